@@ -1,0 +1,87 @@
+// Memory layouts of the tuned BVH. Inner nodes hold the boxes of their N children (N = 2, 4, 8)
+// as rows lo_x, lo_y, lo_z, hi_x, hi_y, hi_z so one SIMD load covers one plane of all children.
+// Child references are tagged pointers: bit 0 set = leaf, 0 = empty slot.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+namespace tuneray::bvh {
+
+// Nodes and leaves start on a cache line: a 256-byte 8-wide node then spans 4 lines, not 5.
+inline constexpr size_t kCacheLine = 64;
+
+using NodeRef = uintptr_t;
+inline constexpr NodeRef kLeafTag = 1;
+inline constexpr NodeRef kEmptyRef = 0;
+
+inline bool is_leaf(NodeRef ref) {
+  return (ref & kLeafTag) != 0;
+}
+template <class T>
+inline T* ref_ptr(NodeRef ref) {
+  return reinterpret_cast<T*>(ref & ~kLeafTag);
+}
+inline NodeRef make_leaf_ref(const void* p) {
+  return reinterpret_cast<uintptr_t>(p) | kLeafTag;
+}
+inline NodeRef make_node_ref(const void* p) {
+  return reinterpret_cast<uintptr_t>(p);
+}
+
+// Fast layout: full-precision boxes. Empty slots have lo = +inf, hi = -inf (never hit).
+template <int N>
+struct alignas(32) FastNode {
+  float bounds[6][N];
+  NodeRef child[N];
+};
+
+// Compact layout: each child plane is 8 bits relative to this node's box: value = origin +
+// q * scale, computed with one fused multiply-add (the build checks the rounded result is
+// conservative with the very same operation the traversal uses).
+template <int N>
+struct alignas(8) CompactNode {
+  float origin[3];
+  float scale[3];
+  uint8_t q[6][N];
+  NodeRef child[N];  // empty slots are kEmptyRef
+};
+
+inline float dequantize(float origin, float scale, uint8_t q) {
+  return std::fma(static_cast<float>(q), scale, origin);
+}
+
+// Leaves start with this header; the payload follows at kLeafPayloadOffset.
+struct LeafHeader {
+  uint32_t prim_count;  // triangles (fast: also the valid lanes over all packs)
+  uint32_t pack_count;  // fast layout: packs of 4; compact: 0
+};
+inline constexpr size_t kLeafPayloadOffset = 16;
+
+// Fast layout leaf payload: 4 triangles per pack, SoA. Non-robust: v0, e1 = v1 - v0,
+// e2 = v2 - v0 (Möller-Trumbore). Robust: v0, v1, v2 (exact vertices: the watertight test needs
+// identical inputs on both sides of a shared edge). Unused lanes: zero geometry (det = 0, never
+// hit) and prim = UINT32_MAX.
+struct alignas(16) TriPack4 {
+  float p[9][4];  // a.x a.y a.z b.x b.y b.z c.x c.y c.z
+  uint32_t prim[4];
+};
+
+// Compact layout leaf payload: uint32_t triangle indices (into GeometryView::triangles).
+
+inline size_t leaf_bytes(const LeafHeader* leaf, bool compact) {
+  return kLeafPayloadOffset +
+         (compact ? leaf->prim_count * sizeof(uint32_t) : leaf->pack_count * sizeof(TriPack4));
+}
+
+template <class T>
+inline const T* leaf_payload(const LeafHeader* leaf) {
+  return reinterpret_cast<const T*>(reinterpret_cast<const char*>(leaf) + kLeafPayloadOffset);
+}
+template <class T>
+inline T* leaf_payload(LeafHeader* leaf) {
+  return reinterpret_cast<T*>(reinterpret_cast<char*>(leaf) + kLeafPayloadOffset);
+}
+
+}  // namespace tuneray::bvh

@@ -1,0 +1,340 @@
+#include "accel/bvh_traverse.h"
+
+#include <immintrin.h>
+
+#include <cstring>
+#include <type_traits>
+
+#include "accel/bvh_triangle.h"
+#include "scene/scene.h"
+
+namespace tuneray::bvh {
+
+namespace {
+
+// Ize 2013: padding the far distance by 1 + 2 gamma(3) makes the float slab test
+// conservative (no ray slips between two adjacent boxes).
+constexpr float kRobustFarScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
+constexpr int kStackSize = 64 * 8;
+
+struct StackEntry {
+  NodeRef ref;
+  float dist;
+};
+
+// ---- box tests: bit i of the result = child i entered within [tnear, tfar]; dist[i] = entry.
+
+template <bool kRobust>
+inline int box_test8(const __m256 (&nears)[3], const __m256 (&fars)[3], const TraversalRay& r,
+                     float tfar, float* dist) {
+  __m256 tn[3], tf[3];
+  for (int a = 0; a < 3; ++a) {
+    const __m256 near = nears[a];
+    const __m256 far = fars[a];
+    const __m256 inv = _mm256_set1_ps(r.inv[a]);
+    if constexpr (kRobust) {
+      const __m256 org = _mm256_set1_ps(r.org[a]);
+      tn[a] = _mm256_mul_ps(_mm256_sub_ps(near, org), inv);
+      tf[a] = _mm256_mul_ps(_mm256_sub_ps(far, org), inv);
+    } else {
+      const __m256 oi = _mm256_set1_ps(r.org_inv[a]);
+      tn[a] = _mm256_fmsub_ps(near, inv, oi);
+      tf[a] = _mm256_fmsub_ps(far, inv, oi);
+    }
+  }
+  const __m256 tmin =
+      _mm256_max_ps(_mm256_max_ps(tn[0], tn[1]), _mm256_max_ps(tn[2], _mm256_set1_ps(r.tnear)));
+  __m256 tmax = _mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), tf[2]);
+  if constexpr (kRobust) tmax = _mm256_mul_ps(tmax, _mm256_set1_ps(kRobustFarScale));
+  tmax = _mm256_min_ps(tmax, _mm256_set1_ps(tfar));
+  _mm256_storeu_ps(dist, tmin);
+  return _mm256_movemask_ps(_mm256_cmp_ps(tmin, tmax, _CMP_LE_OQ));
+}
+
+template <bool kRobust>
+inline int box_test4(const __m128 (&nears)[3], const __m128 (&fars)[3], const TraversalRay& r,
+                     float tfar, float* dist) {
+  __m128 tn[3], tf[3];
+  for (int a = 0; a < 3; ++a) {
+    const __m128 near = nears[a];
+    const __m128 far = fars[a];
+    const __m128 inv = _mm_set1_ps(r.inv[a]);
+    if constexpr (kRobust) {
+      const __m128 org = _mm_set1_ps(r.org[a]);
+      tn[a] = _mm_mul_ps(_mm_sub_ps(near, org), inv);
+      tf[a] = _mm_mul_ps(_mm_sub_ps(far, org), inv);
+    } else {
+      const __m128 oi = _mm_set1_ps(r.org_inv[a]);
+      tn[a] = _mm_fmsub_ps(near, inv, oi);
+      tf[a] = _mm_fmsub_ps(far, inv, oi);
+    }
+  }
+  const __m128 tmin = _mm_max_ps(_mm_max_ps(tn[0], tn[1]), _mm_max_ps(tn[2], _mm_set1_ps(r.tnear)));
+  __m128 tmax = _mm_min_ps(_mm_min_ps(tf[0], tf[1]), tf[2]);
+  if constexpr (kRobust) tmax = _mm_mul_ps(tmax, _mm_set1_ps(kRobustFarScale));
+  tmax = _mm_min_ps(tmax, _mm_set1_ps(tfar));
+  _mm_storeu_ps(dist, tmin);
+  return _mm_movemask_ps(_mm_cmple_ps(tmin, tmax));
+}
+
+template <bool kRobust>
+inline int box_test2(const float (&rows)[6][2], const TraversalRay& r, float tfar, float* dist) {
+  int mask = 0;
+  for (int i = 0; i < 2; ++i) {
+    float tmin = r.tnear, tmax = kInf;
+    for (int a = 0; a < 3; ++a) {
+      const float near = rows[r.near_row[a]][i];
+      const float far = rows[(r.near_row[a] + 3) % 6][i];
+      float tn, tf;
+      if constexpr (kRobust) {
+        tn = (near - r.org[a]) * r.inv[a];
+        tf = (far - r.org[a]) * r.inv[a];
+      } else {
+        tn = std::fma(near, r.inv[a], -r.org_inv[a]);
+        tf = std::fma(far, r.inv[a], -r.org_inv[a]);
+      }
+      tmin = tn > tmin ? tn : tmin;
+      tmax = tf < tmax ? tf : tmax;
+    }
+    if constexpr (kRobust) tmax *= kRobustFarScale;
+    tmax = tmax < tfar ? tmax : tfar;
+    dist[i] = tmin;
+    if (tmin <= tmax) mask |= 1 << i;
+  }
+  return mask;
+}
+
+template <int N, bool kCompact, bool kRobust>
+struct NodeTest;
+
+template <bool kCompact, bool kRobust>
+struct NodeTest<8, kCompact, kRobust> {
+  using Node = std::conditional_t<kCompact, CompactNode<8>, FastNode<8>>;
+  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
+    // Near and far planes are loaded directly by the ray's octant: no dynamically indexed
+    // register array (which would be spilled to the stack on every node).
+    __m256 nears[3], fars[3];
+    for (int a = 0; a < 3; ++a) {
+      const int nr = r.near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
+      if constexpr (kCompact) {
+        const __m256 scale = _mm256_set1_ps(n.scale[a]), origin = _mm256_set1_ps(n.origin[a]);
+        auto decode = [&](int row) {
+          const __m128i bytes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(n.q[row]));
+          return _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(bytes)), scale, origin);
+        };
+        nears[a] = decode(nr);
+        fars[a] = decode(fr);
+      } else {
+        nears[a] = _mm256_load_ps(n.bounds[nr]);
+        fars[a] = _mm256_load_ps(n.bounds[fr]);
+      }
+    }
+    return box_test8<kRobust>(nears, fars, r, tfar, dist);
+  }
+};
+
+template <bool kCompact, bool kRobust>
+struct NodeTest<4, kCompact, kRobust> {
+  using Node = std::conditional_t<kCompact, CompactNode<4>, FastNode<4>>;
+  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
+    __m128 nears[3], fars[3];
+    for (int a = 0; a < 3; ++a) {
+      const int nr = r.near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
+      if constexpr (kCompact) {
+        const __m128 scale = _mm_set1_ps(n.scale[a]), origin = _mm_set1_ps(n.origin[a]);
+        auto decode = [&](int row) {
+          int32_t packed;
+          std::memcpy(&packed, n.q[row], 4);
+          const __m128 q = _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(packed)));
+          return _mm_fmadd_ps(q, scale, origin);
+        };
+        nears[a] = decode(nr);
+        fars[a] = decode(fr);
+      } else {
+        nears[a] = _mm_load_ps(n.bounds[nr]);
+        fars[a] = _mm_load_ps(n.bounds[fr]);
+      }
+    }
+    return box_test4<kRobust>(nears, fars, r, tfar, dist);
+  }
+};
+
+template <bool kCompact, bool kRobust>
+struct NodeTest<2, kCompact, kRobust> {
+  using Node = std::conditional_t<kCompact, CompactNode<2>, FastNode<2>>;
+  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
+    if constexpr (kCompact) {
+      float rows[6][2];
+      for (int k = 0; k < 6; ++k) {
+        for (int i = 0; i < 2; ++i)
+          rows[k][i] = dequantize(n.origin[k % 3], n.scale[k % 3], n.q[k][i]);
+      }
+      return box_test2<kRobust>(rows, r, tfar, dist);
+    } else {
+      return box_test2<kRobust>(n.bounds, r, tfar, dist);
+    }
+  }
+};
+
+// ---- leaves: returns true on a hit (any-hit: stop; closest: tfar and hit updated).
+
+template <bool kCompact, bool kRobust, bool kAnyHit>
+inline bool intersect_leaf(const LeafHeader* leaf, const TraversalContext& ctx,
+                           const TraversalRay& r, float& tfar, Hit* hit) {
+  bool found = false;
+  if constexpr (kCompact) {
+    const uint32_t* ids = leaf_payload<uint32_t>(leaf);
+    for (uint32_t i = 0; i < leaf->prim_count; ++i) {
+      const Triangle& tri = ctx.triangles[ids[i]];
+      const Vec3f& a = ctx.positions[tri.v[0]];
+      const Vec3f& b = ctx.positions[tri.v[1]];
+      const Vec3f& c = ctx.positions[tri.v[2]];
+      TriangleHit th;
+      bool ok =
+          kRobust ? intersect_watertight(a, b, c, r, tfar, th) : intersect_mt(a, b, c, r, tfar, th);
+      if (!ok) continue;
+      if constexpr (kAnyHit) return true;
+      found = true;
+      tfar = th.t;
+      *hit = Hit{th.t, ids[i], th.u, th.v};
+    }
+  } else {
+    const TriPack4* packs = leaf_payload<TriPack4>(leaf);
+    for (uint32_t k = 0; k < leaf->pack_count; ++k) {
+      const TriPack4& p = packs[k];
+      if constexpr (kRobust) {
+        for (int lane = 0; lane < 4; ++lane) {
+          if (p.prim[lane] == kInvalidId) break;
+          const Vec3f a{p.p[0][lane], p.p[1][lane], p.p[2][lane]};
+          const Vec3f b{p.p[3][lane], p.p[4][lane], p.p[5][lane]};
+          const Vec3f c{p.p[6][lane], p.p[7][lane], p.p[8][lane]};
+          TriangleHit th;
+          if (!intersect_watertight(a, b, c, r, tfar, th)) continue;
+          if constexpr (kAnyHit) return true;
+          found = true;
+          tfar = th.t;
+          *hit = Hit{th.t, p.prim[lane], th.u, th.v};
+        }
+      } else {
+        TriangleHit th[4];
+        int mask = intersect_pack_mt(p.p, r, tfar, th);
+        if (!mask) continue;
+        if constexpr (kAnyHit) return true;
+        while (mask) {
+          const int lane = __builtin_ctz(mask);
+          mask &= mask - 1;
+          if (th[lane].t < tfar) {
+            found = true;
+            tfar = th[lane].t;
+            *hit = Hit{th[lane].t, p.prim[lane], th[lane].u, th[lane].v};
+          }
+        }
+      }
+    }
+  }
+  return found;
+}
+
+template <int N, bool kCompact, bool kRobust, bool kAnyHit>
+bool traverse(const TraversalContext& ctx, const Ray& ray, Hit* hit) {
+  using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
+  if (ctx.root == kEmptyRef) return false;
+  const TraversalRay r = make_traversal_ray(ray.org, ray.dir, ray.tnear, ray.tfar);
+  float tfar = ray.tfar;
+  bool found = false;
+  StackEntry stack[kStackSize];
+  int sp = 0;
+  NodeRef cur = ctx.root;
+  for (;;) {
+    while (!is_leaf(cur)) {
+      const Node& node = *ref_ptr<Node>(cur);
+      alignas(32) float dist[N];
+      int mask = NodeTest<N, kCompact, kRobust>::run(node, r, tfar, dist);
+      if constexpr (kCompact) {
+        // Slots past the last child decode to an inverted box, but a degenerate parent box
+        // (all extents 0) would not reject them: mask them out explicitly.
+        for (int i = 0; i < N; ++i) {
+          if (node.child[i] == kEmptyRef) mask &= ~(1 << i);
+        }
+      }
+      if (mask == 0) goto pop;
+      const int first = __builtin_ctz(mask);
+      mask &= mask - 1;
+      if (mask == 0) {
+        cur = node.child[first];
+        continue;
+      }
+      // Two or more children: order by entry distance, visit the nearest, stack the rest
+      // farthest first.
+      StackEntry hits[N];
+      int count = 0;
+      hits[count++] = {node.child[first], dist[first]};
+      while (mask) {
+        const int i = __builtin_ctz(mask);
+        mask &= mask - 1;
+        StackEntry e{node.child[i], dist[i]};
+        int j = count++;
+        while (j > 0 && hits[j - 1].dist < e.dist) {
+          hits[j] = hits[j - 1];
+          --j;
+        }
+        hits[j] = e;  // descending by distance
+      }
+      for (int i = 0; i < count - 1; ++i) stack[sp++] = hits[i];
+      cur = hits[count - 1].ref;
+    }
+    if (intersect_leaf<kCompact, kRobust, kAnyHit>(ref_ptr<LeafHeader>(cur), ctx, r, tfar, hit)) {
+      if constexpr (kAnyHit) return true;
+      found = true;
+    }
+  pop:
+    for (;;) {
+      if (sp == 0) return found;
+      const StackEntry& e = stack[--sp];
+      if (kAnyHit || e.dist <= tfar) {
+        cur = e.ref;
+        break;
+      }
+    }
+  }
+}
+
+template <int N, bool kCompact, bool kRobust>
+bool intersect_kernel(const TraversalContext& ctx, const Ray& ray, Hit& hit) {
+  Hit h;
+  if (!traverse<N, kCompact, kRobust, false>(ctx, ray, &h)) return false;
+  hit = h;
+  return true;
+}
+
+template <int N, bool kCompact, bool kRobust>
+bool occluded_kernel(const TraversalContext& ctx, const Ray& ray) {
+  return traverse<N, kCompact, kRobust, true>(ctx, ray, nullptr);
+}
+
+template <int N, bool kCompact, bool kRobust>
+Kernels make_kernels() {
+  return {&intersect_kernel<N, kCompact, kRobust>, &occluded_kernel<N, kCompact, kRobust>};
+}
+
+template <int N>
+Kernels kernels_for_width(bool compact, bool robust) {
+  if (compact) return robust ? make_kernels<N, true, true>() : make_kernels<N, true, false>();
+  return robust ? make_kernels<N, false, true>() : make_kernels<N, false, false>();
+}
+
+}  // namespace
+
+Kernels select_kernels(const TreeShape& shape) {
+  switch (shape.width) {
+    case 2:
+      return kernels_for_width<2>(shape.compact, shape.robust);
+    case 4:
+      return kernels_for_width<4>(shape.compact, shape.robust);
+    default:
+      return kernels_for_width<8>(shape.compact, shape.robust);
+  }
+}
+
+}  // namespace tuneray::bvh

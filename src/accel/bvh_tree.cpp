@@ -1,0 +1,32 @@
+#include "accel/bvh_tree.h"
+
+#include <cstdlib>
+
+namespace tuneray::bvh {
+
+void Tree::adopt_embree(RTCBVH handle, NodeRef root, TreeShape shape) {
+  reset();
+  handle_ = handle;
+  root_ = root;
+  shape_ = shape;
+}
+
+void Tree::adopt_buffer(void* buffer, size_t bytes, NodeRef root) {
+  if (buffer_) std::free(buffer_);
+  if (handle_) rtcReleaseBVH(handle_);
+  handle_ = nullptr;
+  buffer_ = buffer;
+  buffer_bytes_ = bytes;
+  root_ = root;
+}
+
+void Tree::reset() {
+  if (handle_) rtcReleaseBVH(handle_);
+  if (buffer_) std::free(buffer_);
+  handle_ = nullptr;
+  buffer_ = nullptr;
+  buffer_bytes_ = 0;
+  root_ = kEmptyRef;
+}
+
+}  // namespace tuneray::bvh

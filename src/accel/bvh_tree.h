@@ -1,0 +1,45 @@
+// A built tuned BVH: the root reference plus whatever owns the node memory (Embree's BVH handle
+// for the tree as built, or our own contiguous buffer after the static relayout).
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <cstddef>
+
+#include "accel/bvh_layout.h"
+
+namespace tuneray::bvh {
+
+struct TreeShape {
+  int width = 2;
+  bool compact = false;
+  bool robust = false;
+};
+
+class Tree {
+ public:
+  Tree() = default;
+  ~Tree() { reset(); }
+  Tree(const Tree&) = delete;
+  Tree& operator=(const Tree&) = delete;
+
+  // Takes ownership of an Embree BVH handle whose allocator holds the nodes of `root`.
+  void adopt_embree(RTCBVH handle, NodeRef root, TreeShape shape);
+  // Takes ownership of a buffer from aligned_alloc holding the nodes of `root`; releases the
+  // Embree handle (the nodes it held are no longer referenced).
+  void adopt_buffer(void* buffer, size_t bytes, NodeRef root);
+  void reset();
+
+  NodeRef root() const { return root_; }
+  const TreeShape& shape() const { return shape_; }
+  bool relaid_out() const { return buffer_ != nullptr; }
+
+ private:
+  NodeRef root_ = kEmptyRef;
+  TreeShape shape_;
+  RTCBVH handle_ = nullptr;
+  void* buffer_ = nullptr;
+  size_t buffer_bytes_ = 0;
+};
+
+}  // namespace tuneray::bvh

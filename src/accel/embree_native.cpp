@@ -1,0 +1,169 @@
+#include "accel/embree_native.h"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace tuneray {
+
+namespace {
+const char* quality_name(RTCBuildQuality q) {
+  switch (q) {
+    case RTC_BUILD_QUALITY_LOW:
+      return "low";
+    case RTC_BUILD_QUALITY_HIGH:
+      return "high";
+    default:
+      return "medium";
+  }
+}
+
+inline RTCRay to_rtc(const Ray& r) {
+  RTCRay out;
+  out.org_x = r.org.x;
+  out.org_y = r.org.y;
+  out.org_z = r.org.z;
+  out.tnear = r.tnear;
+  out.dir_x = r.dir.x;
+  out.dir_y = r.dir.y;
+  out.dir_z = r.dir.z;
+  out.time = 0;
+  out.tfar = r.tfar;
+  out.mask = 0xFFFFFFFFu;
+  out.id = 0;
+  out.flags = 0;
+  return out;
+}
+
+inline RTCRayHit to_rtc_hit(const Ray& r) {
+  RTCRayHit rh;
+  rh.ray = to_rtc(r);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+inline bool from_rtc_hit(const RTCRayHit& rh, Hit& hit) {
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = rh.ray.tfar;
+  hit.prim = rh.hit.primID;
+  hit.u = rh.hit.u;
+  hit.v = rh.hit.v;
+  return true;
+}
+}  // namespace
+
+EmbreeNativeAccel::EmbreeNativeAccel(NativeOptions options, std::shared_ptr<EmbreeDevice> device)
+    : options_(options), device_(std::move(device)) {}
+
+EmbreeNativeAccel::~EmbreeNativeAccel() {
+  release();
+}
+
+void EmbreeNativeAccel::release() {
+  if (scene_) rtcReleaseScene(scene_);
+  scene_ = nullptr;
+}
+
+std::string EmbreeNativeAccel::describe() const {
+  return std::string("quality=") + quality_name(options_.quality) +
+         ",robust=" + (options_.robust ? "1" : "0") + ",compact=" + (options_.compact ? "1" : "0") +
+         ",dynamic=" + (options_.dynamic ? "1" : "0");
+}
+
+BuildStats EmbreeNativeAccel::build(const GeometryView& geometry) {
+  release();
+  device_->take_error();
+  auto start = std::chrono::steady_clock::now();
+
+  RTCDevice dev = device_->get();
+  scene_ = rtcNewScene(dev);
+  int flags = RTC_SCENE_FLAG_NONE;
+  if (options_.robust) flags |= RTC_SCENE_FLAG_ROBUST;
+  if (options_.compact) flags |= RTC_SCENE_FLAG_COMPACT;
+  if (options_.dynamic) flags |= RTC_SCENE_FLAG_DYNAMIC;
+  rtcSetSceneFlags(scene_, static_cast<RTCSceneFlags>(flags));
+  rtcSetSceneBuildQuality(scene_, options_.quality);
+
+  if (geometry.triangle_count > 0) {
+    RTCGeometry geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Embree-owned copies: Embree may read 16 bytes at the last vertex, so its buffers are
+    // padded; sharing our tightly packed arrays would read past their end.
+    auto* vertices = static_cast<Vec3f*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3f), geometry.vertex_count));
+    auto* indices = static_cast<Triangle*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(Triangle),
+                                geometry.triangle_count));
+    if (!vertices || !indices) {
+      rtcReleaseGeometry(geom);
+      release();
+      throw BuildError("Embree native build failed: " + device_->take_error());
+    }
+    std::copy_n(geometry.positions, geometry.vertex_count, vertices);
+    std::copy_n(geometry.triangles, geometry.triangle_count, indices);
+    rtcSetGeometryBuildQuality(geom, options_.quality);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene_, geom, 0);
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(scene_);
+
+  std::string error = device_->take_error();
+  if (!error.empty()) {
+    release();
+    throw BuildError("Embree native build failed: " + error);
+  }
+  BuildStats stats;
+  stats.build_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+bool EmbreeNativeAccel::intersect(const Ray& ray, Hit& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = to_rtc_hit(ray);
+  rtcIntersect1(scene_, &context, &rh);
+  return from_rtc_hit(rh, hit);
+}
+
+bool EmbreeNativeAccel::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r = to_rtc(ray);
+  rtcOccluded1(scene_, &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+void EmbreeNativeAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
+  thread_local std::vector<RTCRayHit> buffer;
+  buffer.resize(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) buffer[i] = to_rtc_hit(rays[i]);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  rtcIntersect1M(scene_, &context, buffer.data(), static_cast<unsigned>(rays.size()),
+                 sizeof(RTCRayHit));
+  for (size_t i = 0; i < rays.size(); ++i) {
+    hits[i] = Hit{};
+    from_rtc_hit(buffer[i], hits[i]);
+  }
+}
+
+void EmbreeNativeAccel::occluded_batch(std::span<const Ray> rays,
+                                       std::span<uint8_t> occluded_out) const {
+  thread_local std::vector<RTCRay> buffer;
+  buffer.resize(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) buffer[i] = to_rtc(rays[i]);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  rtcOccluded1M(scene_, &context, buffer.data(), static_cast<unsigned>(rays.size()),
+                sizeof(RTCRay));
+  for (size_t i = 0; i < rays.size(); ++i) occluded_out[i] = buffer[i].tfar < 0.0f ? 1 : 0;
+}
+
+}  // namespace tuneray

@@ -1,0 +1,85 @@
+#include "accel/tuned_bvh.h"
+
+#include <chrono>
+
+#include "accel/bvh_walk.h"
+
+namespace tuneray {
+
+TunedBvhAccel::TunedBvhAccel(BvhConfig config, std::shared_ptr<EmbreeDevice> device)
+    : device_(std::move(device)) {
+  set_config(config);
+}
+
+void TunedBvhAccel::set_config(const BvhConfig& config) {
+  BvhConfig c = config;
+  config_note_ = c.validate();
+  config_ = c;
+}
+
+BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
+  using Clock = std::chrono::steady_clock;
+  auto start = Clock::now();
+  auto next = std::make_unique<bvh::Tree>();
+  bvh::BuildResult result;
+  try {
+    result = bvh::build_tree(geometry, config_, *device_, primitives_, *next);
+    if (config_.is_static) bvh::relayout_depth_first(*next);
+  } catch (...) {
+    tree_.reset();
+    context_ = {};
+    kernels_ = {};
+    tree_stats_ = {};
+    throw;
+  }
+  BuildStats stats;
+  stats.build_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+
+  tree_ = std::move(next);
+  context_ = {tree_->root(), geometry.positions, geometry.triangles};
+  kernels_ = bvh::select_kernels(tree_->shape());
+
+  tree_stats_ = bvh::measure_tree(*tree_, config_.trav_cost, config_.int_cost);
+  const bvh::TreeStats& ts = tree_stats_;
+  stats.memory_bytes = ts.node_bytes + ts.leaf_bytes;
+  stats.node_count = ts.node_count;
+  stats.leaf_count = ts.leaf_count;
+  stats.depth = ts.depth;
+  stats.sah_cost = ts.sah_cost;
+  std::string notes = config_note_;
+  auto add = [&notes](const std::string& s) {
+    if (!s.empty()) notes += (notes.empty() ? "" : "; ") + s;
+  };
+  add(result.notes);
+  if (tree_->relaid_out()) add("relaid out depth-first in one allocation");
+  if (config_.quality == BvhQuality::kHigh)
+    add("spatial splits: " + std::to_string(result.spatial_splits) + ", references " +
+        std::to_string(ts.references) + " for " + std::to_string(geometry.triangle_count) +
+        " triangles");
+  stats.notes = notes;
+  return stats;
+}
+
+bool TunedBvhAccel::intersect(const Ray& ray, Hit& hit) const {
+  if (!kernels_.intersect) return false;
+  return kernels_.intersect(context_, ray, hit);
+}
+
+bool TunedBvhAccel::occluded(const Ray& ray) const {
+  if (!kernels_.occluded) return false;
+  return kernels_.occluded(context_, ray);
+}
+
+void TunedBvhAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
+  for (size_t i = 0; i < rays.size(); ++i) {
+    hits[i] = Hit{};
+    intersect(rays[i], hits[i]);
+  }
+}
+
+void TunedBvhAccel::occluded_batch(std::span<const Ray> rays,
+                                   std::span<uint8_t> occluded_out) const {
+  for (size_t i = 0; i < rays.size(); ++i) occluded_out[i] = occluded(rays[i]) ? 1 : 0;
+}
+
+}  // namespace tuneray

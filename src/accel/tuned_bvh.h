@@ -1,0 +1,56 @@
+// The `tuned` backend: a BVH built by Embree's rtcBuildBVH into our own node and leaf layouts
+// (bvh_layout.h), traversed by our SIMD kernels (bvh_traverse.h), configured by the 11
+// parameters of BvhConfig.
+#pragma once
+
+#include <memory>
+
+#include "accel/accel.h"
+#include "accel/bvh_build.h"
+#include "accel/bvh_config.h"
+#include "accel/bvh_traverse.h"
+#include "accel/bvh_tree.h"
+#include "accel/bvh_walk.h"
+#include "accel/embree_device.h"
+
+namespace tuneray {
+
+class TunedBvhAccel final : public Accel {
+ public:
+  explicit TunedBvhAccel(BvhConfig config = {},
+                         std::shared_ptr<EmbreeDevice> device = EmbreeDevice::shared());
+
+  // Validates (throws std::invalid_argument); takes effect at the next build().
+  void set_config(const BvhConfig& config);
+  const BvhConfig& config() const { return config_; }
+
+  std::string name() const override { return "tuned"; }
+  std::string describe() const override { return config_.to_string(); }
+
+  // Each build makes a new tree; the previous one is released only when the new one is ready.
+  // A refused build (BuildError) leaves the accelerator empty (every ray misses), never
+  // half-built. build_ms covers box setup, rtcBuildBVH and (static=1) the relayout; the
+  // statistics walk afterwards is not timed.
+  BuildStats build(const GeometryView& geometry) override;
+
+  // Shape of the current tree (leaf sizes, references) beyond BuildStats.
+  const bvh::TreeStats& tree_stats() const { return tree_stats_; }
+  bool relaid_out() const { return tree_ && tree_->relaid_out(); }
+
+  bool intersect(const Ray& ray, Hit& hit) const override;
+  bool occluded(const Ray& ray) const override;
+  void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const override;
+  void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> occluded) const override;
+
+ private:
+  BvhConfig config_;
+  std::string config_note_;
+  std::shared_ptr<EmbreeDevice> device_;
+  bvh::PrimitiveCache primitives_;
+  std::unique_ptr<bvh::Tree> tree_;
+  bvh::TraversalContext context_;
+  bvh::Kernels kernels_;
+  bvh::TreeStats tree_stats_;
+};
+
+}  // namespace tuneray

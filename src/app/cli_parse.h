@@ -1,0 +1,12 @@
+// Small parsers for option values shared by several commands.
+#pragma once
+
+#include <string>
+#include <utility>
+
+namespace tuneray {
+
+// "640x360" → {640, 360}; throws std::invalid_argument with the text on anything else.
+std::pair<int, int> parse_size(const std::string& text);
+
+}  // namespace tuneray

@@ -1,0 +1,62 @@
+// tuneray bench render|traversal|build: benchmarks as subcommands (tables on stdout, JSON).
+#include <memory>
+
+#include "app/bench_commands.h"
+#include "app/cmd_bench_accel.h"
+#include "app/commands.h"
+
+namespace tuneray {
+
+CommandAction add_bench_command(CLI::App& app) {
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: render, traversal, build");
+  bench->require_subcommand(1);
+
+  auto render = std::make_shared<BenchRenderArgs>();
+  CLI::App* r = bench->add_subcommand(
+      "render", "Render speed per scene, and Embree's pathtracer side by side");
+  r->add_option("scenes", render->scenes, "Scenes (default: cornell + all shared scenes)");
+  r->add_option("--size", render->size, "Image size")->capture_default_str();
+  r->add_option("--spp", render->spp, "Samples per pixel per repeat")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  r->add_option("--repeats", render->repeats, "Repeats (the median is reported)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  r->add_option("--max-bounces", render->max_bounces, "Path length")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  r->add_option("--json", render->json, "Write results as JSON");
+  r->add_option("--scenes-dir", render->scenes_dir, "Folder of the shared scenes");
+  r->add_flag("!--no-embree", render->embree_reference, "Skip Embree's reference pathtracer");
+
+  auto accel = std::make_shared<BenchAccelArgs>();
+  auto add_accel_options = [&](CLI::App* c) {
+    c->add_option("scenes", accel->scenes, "Scenes (default: every shared scene)");
+    c->add_option("--rays", accel->rays, "Rays per ray set")
+        ->check(CLI::Range(1000, 100000000))
+        ->capture_default_str();
+    c->add_option("--bvh", accel->bvh, "Tuned BVH configuration key=value,... (default: Embree's)");
+    c->add_option("--json", accel->json, "Write results as JSON");
+    c->add_option("--repeats", accel->repeats, "Timed repeats (median)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    c->add_option("--threads", accel->threads, "Threads (0 = all cores)")
+        ->check(CLI::Range(0, 1024));
+    c->add_flag("!--no-sweep", accel->sweep, "Skip the small configuration sweep");
+    c->add_option("--scenes-dir", accel->scenes_dir, "Folder of the shared scenes");
+  };
+  CLI::App* t = bench->add_subcommand(
+      "traversal", "Tuned BVH vs Embree native: Mrays/s on primary, incoherent and shadow rays");
+  add_accel_options(t);
+  CLI::App* b = bench->add_subcommand("build", "Build time, nodes, leaves, SAH cost and memory");
+  add_accel_options(b);
+
+  return [=] {
+    if (r->parsed()) return run_bench_render(*render);
+    if (t->parsed()) return run_bench_traversal(*accel);
+    if (b->parsed()) return run_bench_build(*accel);
+    return 2;
+  };
+}
+
+}  // namespace tuneray

@@ -1,0 +1,207 @@
+// tuneray render SCENE: renders a scene progressively and writes the image(s) and a report.
+#include <tbb/global_control.h>
+
+#include <cctype>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "accel/factory.h"
+#include "app/cli_parse.h"
+#include "app/commands.h"
+#include "app/progress.h"
+#include "image/io.h"
+#include "render/film.h"
+#include "render/tile_renderer.h"
+#include "scene/load.h"
+
+namespace tuneray {
+
+namespace {
+
+struct RenderArgs {
+  std::string scene = "cornell";
+  int spp = 16;
+  std::string size = "640x360";
+  std::vector<std::string> outputs;
+  std::string accel = "native";
+  std::string bvh;
+  int threads = 0;
+  uint64_t seed = 0;
+  int max_bounces = 3;
+  int camera = 0;
+  int tile_size = 32;
+  std::string strategy = "mis";
+  std::string report;
+  std::string scenes_dir;
+  float exposure = 0;
+  bool quiet = false;
+};
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+LightStrategy parse_strategy(const std::string& s) {
+  if (s == "mis") return LightStrategy::kMis;
+  if (s == "light") return LightStrategy::kLightOnly;
+  if (s == "bsdf") return LightStrategy::kBsdfOnly;
+  throw std::invalid_argument("bad --strategy '" + s + "': expected mis, light or bsdf");
+}
+
+std::string default_output(const Scene& scene) {
+  std::string stem = std::filesystem::path(scene.name.empty() ? "render" : scene.name).stem();
+  return "out/" + stem + ".png";
+}
+
+// Checked before rendering so a typo does not cost a long render.
+void check_output_extensions(const std::vector<std::string>& outputs) {
+  for (const std::string& out : outputs) {
+    std::string ext = std::filesystem::path(out).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".png" && ext != ".exr" && ext != ".pfm")
+      throw std::invalid_argument("cannot write '" + out +
+                                  "': unknown image extension (use .png, .exr or .pfm)");
+  }
+}
+
+int run_render(const RenderArgs& a) {
+  auto [width, height] = parse_size(a.size);
+  check_output_extensions(a.outputs);
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.max_bounces = a.max_bounces;
+  settings.tile_size = a.tile_size;
+  settings.seed = a.seed;
+  settings.strategy = parse_strategy(a.strategy);
+
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (a.threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(
+        tbb::global_control::max_allowed_parallelism, static_cast<size_t>(a.threads));
+
+  auto t0 = std::chrono::steady_clock::now();
+  LoadOptions load_options;
+  load_options.scenes_dir = a.scenes_dir;
+  Scene scene = load_scene(a.scene, load_options);
+  double load_ms = ms_since(t0);
+  if (a.camera < 0 || a.camera >= static_cast<int>(scene.cameras.size()))
+    throw std::invalid_argument("bad --camera " + std::to_string(a.camera) + ": scene '" + a.scene +
+                                "' has cameras 0.." + std::to_string(scene.cameras.size() - 1));
+
+  std::unique_ptr<Accel> accel = make_accel(a.accel, a.bvh);
+  GeometryView geometry{scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+                        scene.triangles.size()};
+  BuildStats build = accel->build(geometry);
+
+  PcgSampler sampler(a.seed);
+  TileRenderer renderer(scene, *accel, scene.cameras[a.camera], settings, sampler);
+  Film film(width, height);
+  ProgressBar progress("render", static_cast<uint64_t>(renderer.tile_count()) * a.spp,
+                       !a.quiet && stderr_is_terminal());
+  PassStats total;
+  for (int s = 0; s < a.spp; ++s) {
+    PassStats pass = renderer.render_pass(film, static_cast<uint32_t>(s), 1,
+                                          [&progress] { progress.advance(); });
+    total.render_ms += pass.render_ms;
+    total.rays += pass.rays;
+    total.shadow_rays += pass.shadow_rays;
+    total.invalid_samples += pass.invalid_samples;
+  }
+  progress.finish();
+
+  auto t_out = std::chrono::steady_clock::now();
+  Image image = film.resolve();
+  std::vector<std::string> outputs =
+      a.outputs.empty() ? std::vector{default_output(scene)} : a.outputs;
+  WriteOptions write_options;
+  write_options.exposure = a.exposure;
+  for (const std::string& out : outputs) {
+    std::filesystem::path parent = std::filesystem::path(out).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    write_image(out, image, write_options);
+  }
+  double output_ms = ms_since(t_out);
+
+  nlohmann::ordered_json report = {
+      {"scene", a.scene},
+      {"triangles", scene.triangles.size()},
+      {"width", width},
+      {"height", height},
+      {"spp", a.spp},
+      {"accel", accel->name()},
+      {"accel_config", accel->describe()},
+      {"load_ms", load_ms},
+      {"build_ms", build.build_ms},
+      {"render_ms", total.render_ms},
+      {"output_ms", output_ms},
+      {"rays", total.rays},
+      {"shadow_rays", total.shadow_rays},
+      {"mrays_per_s", total.mrays_per_s()},
+      {"invalid_samples", total.invalid_samples},
+      {"outputs", outputs},
+  };
+  if (!a.report.empty()) {
+    std::filesystem::path parent = std::filesystem::path(a.report).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    std::ofstream f(a.report);
+    if (!(f << report.dump(2) << "\n")) throw std::runtime_error("cannot write report " + a.report);
+  }
+  if (!a.quiet) {
+    std::cout << "scene     " << a.scene << " (" << scene.triangles.size()
+              << " triangles, loaded in " << static_cast<int>(load_ms) << " ms)\n"
+              << "accel     " << accel->name() << " " << accel->describe() << ", built in "
+              << build.build_ms << " ms\n"
+              << "render    " << width << "x" << height << ", " << a.spp << " spp in "
+              << total.render_ms << " ms (" << total.mrays_per_s() << " Mrays/s)\n";
+    for (const auto& out : outputs) std::cout << "wrote     " << out << "\n";
+    if (!a.report.empty()) std::cout << "wrote     " << a.report << "\n";
+    if (total.invalid_samples > 0)
+      std::cout << "warning   " << total.invalid_samples << " samples with NaN/inf dropped\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+CommandAction add_render_command(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene to an image");
+  cmd->add_option("scene", args->scene, "Built-in name, mesh file (.obj/.ply/.gltf) or .json scene")
+      ->capture_default_str();
+  cmd->add_option("--spp", args->spp, "Samples per pixel")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--out", args->outputs, "Output file(s): .png, .exr or .pfm (repeatable)");
+  cmd->add_option("--accel", args->accel, "Acceleration structure backend")->capture_default_str();
+  cmd->add_option("--bvh", args->bvh, "Backend parameters key=value,... (see docs/bvh.md)");
+  cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores)")
+      ->check(CLI::Range(0, 1024));
+  cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
+  cmd->add_option("--max-bounces", args->max_bounces,
+                  "Scattering events per path (1 = direct light)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  cmd->add_option("--camera", args->camera, "Camera index")->capture_default_str();
+  cmd->add_option("--tile-size", args->tile_size, "Tile side in pixels")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  cmd->add_option("--strategy", args->strategy,
+                  "Light transport: mis, light (NEE only), bsdf (no NEE)")
+      ->capture_default_str();
+  cmd->add_option("--report", args->report, "Write timings as JSON to this file");
+  cmd->add_option("--scenes-dir", args->scenes_dir,
+                  "Folder to resolve scene files in ($TUNERAY_SCENES)");
+  cmd->add_option("--exposure", args->exposure, "Exposure in stops for PNG output")
+      ->capture_default_str();
+  cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
+  return [args] { return run_render(*args); };
+}
+
+}  // namespace tuneray

@@ -1,0 +1,89 @@
+// tuneray tune SCENE: online BVH tuning along a camera path, with a summary table.
+#include <fmt/core.h>
+
+#include <iostream>
+#include <memory>
+
+#include "app/cli_parse.h"
+#include "app/commands.h"
+#include "app/progress.h"
+#include "tuning/stats.h"
+#include "tuning/tune_session.h"
+
+namespace tuneray {
+
+namespace {
+
+struct TuneArgs {
+  TuneOptions options;
+  std::string objective = "render";
+  std::string size = "320x180";
+  bool quiet = false;
+};
+
+int run_tune(TuneArgs& a) {
+  a.options.objective = parse_objective(a.objective);
+  std::tie(a.options.width, a.options.height) = parse_size(a.size);
+  fmt::print("tuning {} (objective {}, {} cameras x {} frames, {}x{}, {} spp) into {}\n",
+             a.options.scene, a.objective, a.options.cameras, a.options.iterations, a.options.width,
+             a.options.height, a.options.spp, a.options.db_path);
+  TuneReport report = run_tune_session(a.options, [&](const std::string& line) {
+    if (!a.quiet) std::cout << line << std::endl;
+  });
+  std::vector<double> speedups;
+  int searched = 0;
+  for (const auto& c : report.cameras) {
+    speedups.push_back(c.speedup());
+    searched += c.mode == "search";
+  }
+  fmt::print("\n{:>6} {:>8} {:>11} {:>11} {:>8} {:>14}  {}\n", "camera", "mode", "default ms",
+             "chosen ms", "speedup", "frames total", "configuration");
+  for (const auto& c : report.cameras)
+    fmt::print("{:>6} {:>8} {:>11.2f} {:>11.2f} {:>8.3f} {:>14.1f}  {}\n", c.camera, c.mode,
+               c.default_ms, c.chosen_ms, c.speedup(), c.accumulated_ms, c.config);
+  fmt::print(
+      "\nspeedup over the default configuration: median {:.3f}, geometric mean {:.3f}; "
+      "{} of {} cameras searched, {} failed builds\n",
+      median(speedups), geometric_mean(speedups), searched, report.cameras.size(),
+      report.failed_builds);
+  return 0;
+}
+
+}  // namespace
+
+CommandAction add_tune_command(CLI::App& app) {
+  auto a = std::make_shared<TuneArgs>();
+  TuneOptions& o = a->options;
+  CLI::App* cmd = app.add_subcommand("tune", "Tune the BVH online along a camera path");
+  cmd->add_option("scene", o.scene, "Scene")->capture_default_str();
+  cmd->add_option("--objective", a->objective, "render (render time) or total (build + render)")
+      ->check(CLI::IsMember({"render", "total"}))
+      ->capture_default_str();
+  cmd->add_option("--db", o.db_path, "Tuning database (SQLite)")->capture_default_str();
+  cmd->add_option("--epsilon", o.epsilon, "Probability of searching at a new camera")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--predictor", o.predictor, "nn, rbf or both")
+      ->check(CLI::IsMember({"nn", "rbf", "both"}))
+      ->capture_default_str();
+  cmd->add_option("--iterations", o.iterations, "Frames per camera position")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--cameras", o.cameras, "Camera positions along the path")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--camera-path", o.camera_path, "Camera path index")->capture_default_str();
+  cmd->add_option("--spp", o.spp, "Samples per pixel per frame")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  cmd->add_option("--size", a->size, "Frame size")->capture_default_str();
+  cmd->add_option("--max-bounces", o.max_bounces, "Path length")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Seed of the tuner and the sampler")->capture_default_str();
+  cmd->add_option("--scenes-dir", o.scenes_dir, "Folder to resolve scene files in");
+  cmd->add_flag("--quiet,-q", a->quiet, "Only the summary");
+  return [a] { return run_tune(*a); };
+}
+
+}  // namespace tuneray

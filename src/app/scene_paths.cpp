@@ -1,0 +1,47 @@
+#include "app/scene_paths.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace tuneray {
+
+namespace fs = std::filesystem;
+
+std::string find_shared_scenes_dir(const std::string& override_dir) {
+  if (!override_dir.empty()) return override_dir;
+  if (const char* env = std::getenv("TUNERAY_SCENES")) return env;
+  std::vector<fs::path> candidates = {"../shared/scenes", "shared/scenes", "../../shared/scenes"};
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    // build/src/app/tuneray → checkout root is three levels up; shared/ sits beside it.
+    fs::path root = exe.parent_path().parent_path().parent_path().parent_path();
+    candidates.push_back(root.parent_path() / "shared" / "scenes");
+  }
+  for (const auto& c : candidates)
+    if (fs::is_directory(c, ec)) return fs::weakly_canonical(c).string();
+  return "";
+}
+
+std::vector<std::string> shared_scene_files(const std::string& scenes_dir) {
+  // Ordered by triangle count (see ../shared/scenes/README.md).
+  static const char* kFiles[] = {
+      "cornell-box/CornellBox-Original.obj",
+      "cornell-box/CornellBox-Water.obj",
+      "teapot/teapot.obj",
+      "stanford-bunny/bunny.obj",
+      "lost-empire/lost_empire.obj",
+      "sports-car/sportsCar.obj",
+      "conference/conference.obj",
+      "bmw-m6/bmw-m6.obj",
+  };
+  std::vector<std::string> out;
+  if (scenes_dir.empty()) return out;
+  for (const char* f : kFiles) {
+    fs::path p = fs::path(scenes_dir) / f;
+    if (fs::exists(p)) out.push_back(p.string());
+  }
+  return out;
+}
+
+}  // namespace tuneray

@@ -1,0 +1,86 @@
+#include "render/environment_light.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace tuneray {
+
+Vec2f EnvironmentLight::direction_to_uv(Vec3f d) {
+  float theta = std::acos(std::clamp(d.y, -1.0f, 1.0f));
+  float phi = std::atan2(d.x, -d.z);
+  return {(phi + kPi) * (0.5f * kInvPi), theta * kInvPi};
+}
+
+Vec3f EnvironmentLight::uv_to_direction(Vec2f uv) {
+  float phi = uv.x * 2.0f * kPi - kPi;
+  float theta = uv.y * kPi;
+  float sin_theta = std::sin(theta);
+  return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
+}
+
+EnvironmentLight::EnvironmentLight(const Environment& env) : scale_(env.scale) {
+  active_ = env.active() && env.scale > 0;
+  if (!active_) return;
+  if (env.map.empty()) {
+    constant_ = env.constant * env.scale;
+    mean_luminance_ = luminance(constant_);
+    return;
+  }
+  map_ = &env.map;
+  int w = map_->width(), h = map_->height();
+  std::vector<float> weights(static_cast<size_t>(w) * h);
+  double sum = 0, weight_sum = 0;
+  for (int y = 0; y < h; ++y) {
+    float sin_theta = std::sin(kPi * (y + 0.5f) / h);
+    for (int x = 0; x < w; ++x) {
+      float lum = std::max(0.0f, luminance(map_->at(x, y)));
+      weights[static_cast<size_t>(y) * w + x] = lum * sin_theta;
+      sum += lum * sin_theta;
+      weight_sum += sin_theta;
+    }
+  }
+  distribution_ = Distribution2D(weights, w, h);
+  mean_luminance_ = weight_sum > 0 ? static_cast<float>(sum / weight_sum) * scale_ : 0.0f;
+  if (!(mean_luminance_ > 0)) active_ = false;
+}
+
+Color EnvironmentLight::eval(Vec3f dir) const {
+  if (!active_) return Color(0.0f);
+  if (!map_) return constant_;
+  Vec2f uv = direction_to_uv(dir);
+  int x = std::min(static_cast<int>(uv.x * map_->width()), map_->width() - 1);
+  int y = std::min(static_cast<int>(uv.y * map_->height()), map_->height() - 1);
+  return map_->at(std::max(x, 0), std::max(y, 0)) * scale_;
+}
+
+EnvironmentSample EnvironmentLight::sample(Vec2f u) const {
+  EnvironmentSample s;
+  if (!active_) return s;
+  if (!map_) {
+    s.wi = sample_uniform_sphere(u);
+    s.pdf = kUniformSpherePdf;
+    s.radiance = constant_;
+    return s;
+  }
+  float pdf_uv = 0;
+  Vec2f uv = distribution_.sample(u, &pdf_uv);
+  float sin_theta = std::sin(uv.y * kPi);
+  if (!(pdf_uv > 0) || !(sin_theta > 0)) return s;
+  s.wi = uv_to_direction(uv);
+  // Jacobian of the equirectangular map: d omega = 2 pi^2 sin(theta) du dv.
+  s.pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
+  s.radiance = eval(s.wi);
+  return s;
+}
+
+float EnvironmentLight::pdf(Vec3f dir) const {
+  if (!active_) return 0.0f;
+  if (!map_) return kUniformSpherePdf;
+  Vec2f uv = direction_to_uv(dir);
+  float sin_theta = std::sin(uv.y * kPi);
+  if (!(sin_theta > 0)) return 0.0f;
+  return distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_theta);
+}
+
+}  // namespace tuneray

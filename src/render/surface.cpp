@@ -1,0 +1,56 @@
+#include "render/surface.h"
+
+#include <cmath>
+
+#include "image/texture_lookup.h"
+
+namespace tuneray {
+
+SurfaceInteraction make_interaction(const Scene& scene, const Hit& hit) {
+  SurfaceInteraction si;
+  const Triangle& t = scene.triangles[hit.prim];
+  Vec3f p0 = scene.positions[t.v[0]], p1 = scene.positions[t.v[1]], p2 = scene.positions[t.v[2]];
+  float w0 = 1.0f - hit.u - hit.v;
+  // Barycentric interpolation is more precise than org + t dir far from the origin.
+  si.position = p0 * w0 + p1 * hit.u + p2 * hit.v;
+  Vec3f ng = cross(p1 - p0, p2 - p0);
+  float len = length(ng);
+  si.geometric_normal = len > 0 ? ng / len : Vec3f(0, 0, 1);
+  Vec3f ns =
+      scene.normals[t.v[0]] * w0 + scene.normals[t.v[1]] * hit.u + scene.normals[t.v[2]] * hit.v;
+  float ns_len = length(ns);
+  ns = ns_len > 0 && std::isfinite(ns_len) ? ns / ns_len : si.geometric_normal;
+  if (!scene.uvs.empty()) {
+    si.uv = scene.uvs[t.v[0]] * w0 + scene.uvs[t.v[1]] * hit.u + scene.uvs[t.v[2]] * hit.v;
+  }
+  // The shading tangent follows dp/du when UVs exist (anisotropic roughness aligns with the
+  // texture), else an arbitrary but continuous frame.
+  Vec3f tangent = p1 - p0;
+  si.shading = Frame::from_normal_tangent(ns, tangent);
+  si.prim = hit.prim;
+  si.material = &scene.materials[scene.material_ids[hit.prim]];
+  return si;
+}
+
+BsdfParams resolve_bsdf(const Scene& scene, const SurfaceInteraction& si) {
+  const Material& m = *si.material;
+  BsdfParams p;
+  p.type = m.type;
+  p.base_color = m.base_color;
+  if (m.base_texture != kNoTexture)
+    p.base_color *= sample_bilinear_wrap(scene.textures[m.base_texture].image, si.uv);
+  p.specular_color = m.specular_color;
+  p.transmittance = m.transmittance;
+  p.alpha_x = m.roughness_u;
+  p.alpha_y = m.roughness_v;
+  p.ior = m.ior;
+  return p;
+}
+
+Vec3f offset_ray_origin(Vec3f p, Vec3f n, Vec3f dir) {
+  float magnitude = max_component(Vec3f(std::abs(p.x), std::abs(p.y), std::abs(p.z)));
+  float eps = 1e-4f * std::max(1.0f, magnitude) * 0.05f;
+  return p + n * (dot(n, dir) >= 0 ? eps : -eps);
+}
+
+}  // namespace tuneray

@@ -1,0 +1,118 @@
+#include "scene/ply_check.h"
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <vector>
+
+#include "scene/load.h"
+
+namespace tuneray {
+
+namespace {
+
+struct Property {
+  std::string name;
+  int size = 0;        // bytes of a scalar, or of each list item
+  int count_size = 0;  // > 0 for lists: bytes of the item count
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<Property> properties;
+};
+
+int type_size(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32")
+    return 4;
+  if (t == "double" || t == "float64") return 8;
+  return 0;
+}
+
+uint64_t read_unsigned(const char* p, int size, bool big_endian) {
+  uint64_t v = 0;
+  for (int i = 0; i < size; ++i) {
+    int byte = big_endian ? i : size - 1 - i;
+    v = (v << 8) | static_cast<unsigned char>(p[byte]);
+  }
+  return v;
+}
+
+}  // namespace
+
+void check_ply_file(const std::string& path) {
+  auto fail = [&](const std::string& what) { throw SceneError(path + ": malformed PLY: " + what); };
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open file");
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t header_end = data.find("end_header");
+  if (data.rfind("ply", 0) != 0 || header_end == std::string::npos || header_end > (1 << 20))
+    fail("header missing 'ply' or 'end_header'");
+
+  std::istringstream header(data.substr(0, header_end));
+  std::string line, format;
+  std::vector<Element> elements;
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "format") {
+      words >> format;
+    } else if (keyword == "element") {
+      Element e;
+      if (!(words >> e.name >> e.count)) fail("bad element line '" + line + "'");
+      elements.push_back(e);
+    } else if (keyword == "property") {
+      if (elements.empty()) fail("property before any element");
+      std::string type;
+      Property p;
+      words >> type;
+      if (type == "list") {
+        std::string count_type, item_type;
+        words >> count_type >> item_type;
+        p.count_size = type_size(count_type);
+        p.size = type_size(item_type);
+        if (p.count_size == 0 || p.size == 0) fail("bad list property '" + line + "'");
+      } else {
+        p.size = type_size(type);
+        if (p.size == 0) fail("unknown property type '" + type + "'");
+      }
+      words >> p.name;
+      elements.back().properties.push_back(p);
+    }
+  }
+  if (format == "ascii") return;  // assimp reports or tolerates short ASCII bodies itself
+  if (format != "binary_little_endian" && format != "binary_big_endian")
+    fail("unknown format '" + format + "'");
+  const bool big = format == "binary_big_endian";
+
+  size_t pos = data.find('\n', header_end);
+  if (pos == std::string::npos) fail("no data after the header");
+  ++pos;
+  uint64_t vertex_count = 0;
+  for (const Element& e : elements) {
+    if (e.name == "vertex") vertex_count = e.count;
+    for (uint64_t i = 0; i < e.count; ++i)
+      for (const Property& p : e.properties) {
+        uint64_t items = 1;
+        if (p.count_size > 0) {
+          if (pos + p.count_size > data.size()) fail("file ends inside element '" + e.name + "'");
+          items = read_unsigned(&data[pos], p.count_size, big);
+          pos += p.count_size;
+        }
+        if (items * p.size > data.size() - pos) fail("file ends inside element '" + e.name + "'");
+        if (e.name == "face" && p.count_size > 0)
+          for (uint64_t k = 0; k < items; ++k)
+            if (read_unsigned(&data[pos + k * p.size], p.size, big) >= vertex_count)
+              fail("face " + std::to_string(i) + " has a vertex index out of range");
+        pos += items * p.size;
+      }
+  }
+}
+
+}  // namespace tuneray

@@ -1,0 +1,333 @@
+#include "tuner/nelder_mead.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include "tuner/latin_hypercube.h"
+#include "tuner/token_io.h"
+
+namespace tuneray::tuner {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Iterations that measure nothing (every point already recorded) are free, but bounded.
+constexpr int kFreeIterationFactor = 10;
+// Consecutive restarts from a small simplex that did not improve the incumbent before the
+// search is declared converged: one can fail by bad luck with noisy costs, two rarely do.
+constexpr int kStaleRestartLimit = 2;
+
+double distance(const std::vector<double>& a, const std::vector<double>& b) {
+  double sum = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]) * (a[i] - b[i]);
+  return std::sqrt(sum);
+}
+
+}  // namespace
+
+double robust_cost(const std::vector<double>& costs) {
+  if (costs.empty()) return kInfinity;
+  std::vector<double> sorted = costs;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::isinf(sorted.back())) return kInfinity;
+  const size_t mid = sorted.size() / 2;
+  return sorted.size() % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
+}
+
+NelderMead::NelderMead(const Space& space, const NelderMeadOptions& options)
+    : space_(&space), options_(options) {}
+
+NelderMead::NelderMead(const Space& space, const NelderMeadOptions& options,
+                       std::vector<double> start, uint64_t seed)
+    : space_(&space), options_(options), rng_(seed) {
+  if (start.size() != space.size()) throw std::invalid_argument("NelderMead: bad start point");
+  if (options.max_repeats < options.min_repeats || options.min_repeats < 1) {
+    throw std::invalid_argument("NelderMead: need 1 <= min_repeats <= max_repeats");
+  }
+  repeats_ = options.min_repeats;
+  space.feasible(start);
+  build_simplex(start, options.initial_radius);
+  initial_size_ = size();
+  if (space.size() == 0) finish(true);
+}
+
+void NelderMead::build_simplex(const std::vector<double>& centre, double radius) {
+  const size_t dims = centre.size();
+  vertices_.assign(1, centre);
+  for (auto& unit : latin_hypercube(dims, dims, rng_)) {
+    for (size_t d = 0; d < dims; ++d) {
+      // A discrete coordinate gets at least one cell on each side, so that a small simplex
+      // still reaches the neighbouring values instead of sitting on one plateau.
+      const size_t cells = space_->param(d).cardinality();
+      const double cell = cells > 0 ? 1.0 / static_cast<double>(cells) : 0.0;
+      const double width = std::min(1.0, 2.0 * std::max(radius, cell));
+      const double lo = std::clamp(centre[d] - 0.5 * width, 0.0, 1.0 - width);
+      unit[d] = lo + width * unit[d];
+    }
+    space_->feasible(unit);
+    vertices_.push_back(std::move(unit));
+  }
+}
+
+double NelderMead::size() const {
+  double largest = 0.0;
+  for (size_t i = 1; i < vertices_.size(); ++i) {
+    largest = std::max(largest, distance(vertices_[i], vertices_[0]));
+  }
+  return largest;
+}
+
+bool NelderMead::needs_measurement(const Lookup& lookup, const Config& config, int repeats) const {
+  const std::vector<double>* costs = lookup(config);
+  if (costs == nullptr || costs->empty()) return true;
+  if (std::any_of(costs->begin(), costs->end(), [](double c) { return std::isinf(c); })) {
+    return false;
+  }
+  return static_cast<int>(costs->size()) < repeats;
+}
+
+double NelderMead::value(const Lookup& lookup, const std::vector<double>& point) const {
+  const std::vector<double>* costs = lookup(space_->decode(point));
+  return costs ? robust_cost(*costs) : kInfinity;
+}
+
+void NelderMead::sort_vertices(const Lookup& lookup) {
+  std::vector<std::pair<double, size_t>> order(vertices_.size());
+  for (size_t i = 0; i < vertices_.size(); ++i) order[i] = {value(lookup, vertices_[i]), i};
+  // Stable on ties so that the result does not depend on the sort implementation.
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::vector<double>> sorted;
+  sorted.reserve(vertices_.size());
+  for (const auto& entry : order) sorted.push_back(std::move(vertices_[entry.second]));
+  vertices_ = std::move(sorted);
+}
+
+bool NelderMead::collapsed() const {
+  const Config first = space_->decode(vertices_[0]);
+  for (size_t i = 1; i < vertices_.size(); ++i) {
+    if (!(space_->decode(vertices_[i]) == first)) return false;
+  }
+  return true;
+}
+
+bool NelderMead::degenerate() const {
+  const double scale = size();
+  if (scale == 0.0) return true;
+  std::vector<std::vector<double>> basis;
+  for (size_t i = 1; i < vertices_.size(); ++i) {
+    std::vector<double> edge(vertices_[i].size());
+    for (size_t d = 0; d < edge.size(); ++d) edge[d] = vertices_[i][d] - vertices_[0][d];
+    for (const auto& b : basis) {
+      const double projection = std::inner_product(edge.begin(), edge.end(), b.begin(), 0.0);
+      for (size_t d = 0; d < edge.size(); ++d) edge[d] -= projection * b[d];
+    }
+    const double norm = std::sqrt(std::inner_product(edge.begin(), edge.end(), edge.begin(), 0.0));
+    if (norm < options_.degeneracy_tolerance * scale) return true;
+    for (double& e : edge) e /= norm;
+    basis.push_back(std::move(edge));
+  }
+  return false;
+}
+
+int NelderMead::repeats_for(double size) const {
+  if (size <= 0.0 || initial_size_ <= 0.0) return options_.max_repeats;
+  const double halvings = std::floor(std::log2(initial_size_ / size));
+  const double wanted = options_.min_repeats + std::max(0.0, halvings);
+  return static_cast<int>(std::min<double>(options_.max_repeats, wanted));
+}
+
+std::vector<double> NelderMead::along(const std::vector<double>& from,
+                                      const std::vector<double>& to, double t) const {
+  std::vector<double> point(from.size());
+  for (size_t d = 0; d < point.size(); ++d) point[d] = from[d] + t * (to[d] - from[d]);
+  space_->feasible(point);
+  return point;
+}
+
+void NelderMead::finish(bool converged) {
+  phase_ = Phase::kDone;
+  converged_ = converged;
+}
+
+std::optional<Config> NelderMead::next(const Lookup& lookup) {
+  std::optional<Config> request = advance(lookup);
+  if (request) ++requests_;
+  return request;
+}
+
+std::optional<Config> NelderMead::advance(const Lookup& lookup) {
+  // Each pass either asks for a measurement, finishes, or moves to another phase; the bound
+  // only guards against a bug turning into a hang.
+  for (int pass = 0; pass < 100000; ++pass) {
+    switch (phase_) {
+      case Phase::kDone:
+        return std::nullopt;
+
+      case Phase::kEvaluate: {
+        for (const auto& vertex : vertices_) {
+          Config config = space_->decode(vertex);
+          if (needs_measurement(lookup, config, repeats_)) return config;
+        }
+        sort_vertices(lookup);
+        Config incumbent = space_->decode(vertices_[0]);
+        if (needs_measurement(lookup, incumbent, repeats_ + 1)) return incumbent;
+
+        const double current_size = size();
+        const bool small = current_size <= options_.x_tolerance || collapsed();
+        if (requests_ != requests_at_iteration_start_) {
+          ++charged_iterations_;
+          requests_at_iteration_start_ = requests_;
+        }
+        if (charged_iterations_ >= options_.max_iterations ||
+            iterations_ >= kFreeIterationFactor * options_.max_iterations) {
+          finish(small);
+          return std::nullopt;
+        }
+        if (small) {
+          // Noise makes a simplex shrink around a point that only looked best; restart around
+          // the incumbent with a smaller box while restarts keep improving it.
+          const double incumbent_cost = value(lookup, vertices_[0]);
+          stale_restarts_ = incumbent_cost < restart_cost_ ? 0 : stale_restarts_ + 1;
+          if (restarts_ >= options_.max_restarts || stale_restarts_ >= kStaleRestartLimit) {
+            finish(true);
+            return std::nullopt;
+          }
+          ++restarts_;
+          restart_cost_ = incumbent_cost;
+          build_simplex(vertices_[0], options_.initial_radius * std::pow(0.5, restarts_));
+          continue;
+        }
+        if (degenerate()) {
+          if (restarts_ >= options_.max_restarts) {
+            finish(false);
+            return std::nullopt;
+          }
+          ++restarts_;
+          const double radius =
+              std::clamp(current_size, 4.0 * options_.x_tolerance, options_.initial_radius);
+          build_simplex(vertices_[0], radius);
+          continue;
+        }
+        const int wanted = repeats_for(current_size);
+        if (wanted > repeats_) {
+          repeats_ = wanted;
+          continue;
+        }
+        const size_t n = vertices_.size() - 1;
+        centroid_.assign(vertices_[0].size(), 0.0);
+        for (size_t i = 0; i < n; ++i) {
+          for (size_t d = 0; d < centroid_.size(); ++d) centroid_[d] += vertices_[i][d] / n;
+        }
+        reflected_ = along(centroid_, vertices_.back(), -options_.reflection);
+        ++iterations_;
+        phase_ = Phase::kReflect;
+        continue;
+      }
+
+      case Phase::kReflect: {
+        Config config = space_->decode(reflected_);
+        if (needs_measurement(lookup, config, repeats_)) return config;
+        const double f_reflected = value(lookup, reflected_);
+        const double f_best = value(lookup, vertices_.front());
+        const double f_second_worst = value(lookup, vertices_[vertices_.size() - 2]);
+        const double f_worst = value(lookup, vertices_.back());
+        if (f_reflected < f_best) {
+          trial_ = along(centroid_, reflected_, options_.expansion);
+          phase_ = Phase::kExpand;
+        } else if (f_reflected < f_second_worst) {
+          vertices_.back() = reflected_;
+          phase_ = Phase::kEvaluate;
+        } else {
+          outside_contraction_ = f_reflected < f_worst;
+          trial_ = along(centroid_, outside_contraction_ ? reflected_ : vertices_.back(),
+                         options_.contraction);
+          phase_ = Phase::kContract;
+        }
+        continue;
+      }
+
+      case Phase::kExpand: {
+        Config config = space_->decode(trial_);
+        if (needs_measurement(lookup, config, repeats_)) return config;
+        const bool expanded_better = value(lookup, trial_) < value(lookup, reflected_);
+        vertices_.back() = expanded_better ? trial_ : reflected_;
+        phase_ = Phase::kEvaluate;
+        continue;
+      }
+
+      case Phase::kContract: {
+        Config config = space_->decode(trial_);
+        if (needs_measurement(lookup, config, repeats_)) return config;
+        const double f_trial = value(lookup, trial_);
+        const bool accepted = outside_contraction_ ? f_trial <= value(lookup, reflected_)
+                                                   : f_trial < value(lookup, vertices_.back());
+        if (accepted) {
+          vertices_.back() = trial_;
+        } else {
+          for (size_t i = 1; i < vertices_.size(); ++i) {
+            vertices_[i] = along(vertices_[0], vertices_[i], options_.shrink);
+          }
+        }
+        phase_ = Phase::kEvaluate;
+        continue;
+      }
+    }
+  }
+  throw std::logic_error("NelderMead::next made no progress");
+}
+
+std::string NelderMead::serialise() const {
+  TokenWriter out;
+  out.put_word("nm1").put(static_cast<int>(phase_)).put(outside_contraction_).put(converged_);
+  out.put(iterations_).put(charged_iterations_).put(requests_).put(requests_at_iteration_start_);
+  out.put(restarts_).put(repeats_).put(initial_size_).put(restart_cost_).put(stale_restarts_);
+  out.put(rng_);
+  out.put(centroid_).put(reflected_).put(trial_);
+  out.put(static_cast<int64_t>(vertices_.size()));
+  for (const auto& v : vertices_) out.put(v);
+  return out.str();
+}
+
+NelderMead NelderMead::deserialise(const Space& space, const NelderMeadOptions& options,
+                                   std::string_view text) {
+  TokenReader in(text);
+  if (in.get_word() != "nm1") throw std::runtime_error("not a Nelder-Mead search state");
+  NelderMead search(space, options);
+  const int64_t phase = in.get_int();
+  if (phase < 0 || phase > static_cast<int>(Phase::kDone)) {
+    throw std::runtime_error("bad phase in Nelder-Mead search state");
+  }
+  search.phase_ = static_cast<Phase>(phase);
+  search.outside_contraction_ = in.get_bool();
+  search.converged_ = in.get_bool();
+  search.iterations_ = static_cast<int>(in.get_int());
+  search.charged_iterations_ = static_cast<int>(in.get_int());
+  search.requests_ = in.get_int();
+  search.requests_at_iteration_start_ = in.get_int();
+  search.restarts_ = static_cast<int>(in.get_int());
+  search.repeats_ = static_cast<int>(in.get_int());
+  search.initial_size_ = in.get_double();
+  search.restart_cost_ = in.get_double();
+  search.stale_restarts_ = static_cast<int>(in.get_int());
+  in.get(search.rng_);
+  search.centroid_ = in.get_doubles();
+  search.reflected_ = in.get_doubles();
+  search.trial_ = in.get_doubles();
+  const int64_t count = in.get_int();
+  if (count != static_cast<int64_t>(space.size()) + 1) {
+    throw std::runtime_error("Nelder-Mead search state does not match the space");
+  }
+  for (int64_t i = 0; i < count; ++i) {
+    search.vertices_.push_back(in.get_doubles());
+    if (search.vertices_.back().size() != space.size()) {
+      throw std::runtime_error("Nelder-Mead search state does not match the space");
+    }
+  }
+  return search;
+}
+
+}  // namespace tuneray::tuner

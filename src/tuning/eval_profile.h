@@ -1,0 +1,33 @@
+// Sizes of the evaluation study: how many scenes, cameras, search frames and repetitions.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tuning/frame_bench.h"
+
+namespace tuneray {
+
+struct EvalProfile {
+  std::string name;
+  std::vector<std::string> scenes;  // scene specs (built-in names or files)
+  int cameras = 100;                // positions along each scene's camera path
+  int iterations = 80;              // search frames per camera
+  int width = 320, height = 180;
+  uint32_t spp = 1;
+  int max_bounces = 3;
+  int repetitions = 15;  // random train/validation splits
+  double train_fraction = 0.8;
+  int measure_repeats = 3;  // live re-measurements (median) of a configuration
+  std::vector<Objective> objectives = {Objective::kRender, Objective::kTotal};
+  uint64_t seed = 1;
+};
+
+// "quick": two small built-in scenes, CI-sized (minutes). "standard": every shared scene,
+// reduced cameras and iterations (about an hour on 2 cores). "paper": 100 cameras x 80
+// iterations on every shared scene. `scenes_dir` locates the shared scenes (empty: skipped).
+// Throws std::invalid_argument for an unknown name.
+EvalProfile eval_profile(const std::string& name, const std::vector<std::string>& shared_scenes);
+
+}  // namespace tuneray

@@ -1,0 +1,340 @@
+#include "tuning/eval_report.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "tuning/eval_metrics.h"
+#include "tuning/stats.h"
+
+namespace tuneray {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::ofstream open_out(const fs::path& path) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path.string());
+  return f;
+}
+
+// Numbers in CSV and report share one format, so the report can be checked against the CSV.
+std::string num(double v) {
+  if (std::isinf(v)) return "inf";
+  return fmt::format("{:.3f}", v);
+}
+
+std::vector<double> finite(const std::vector<double>& v) {
+  std::vector<double> out;
+  for (double x : v)
+    if (std::isfinite(x)) out.push_back(x);
+  return out;
+}
+
+void write_csvs(const EvalResults& r, const fs::path& dir) {
+  auto cams = open_out(dir / "cameras.csv");
+  cams << "scene,objective,camera,default_ms,converged_ms,best_ms,search_speedup,converged,"
+          "search_frames,search_total_ms,converged_config,best_config\n";
+  for (const CameraRecord& c : r.cameras) {
+    double total = 0;
+    for (double ms : c.search_ms) total += ms;
+    cams << fmt::format("{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\"\n", c.scene, c.objective,
+                        c.camera, num(c.default_ms), num(c.converged_ms), num(c.best_ms),
+                        num(c.search_speedup()), c.converged ? 1 : 0, c.search_ms.size(),
+                        num(total), c.converged_config, c.best_config);
+  }
+  auto frames = open_out(dir / "search_frames.csv");
+  frames << "scene,objective,camera,frame,cost_ms\n";
+  for (const CameraRecord& c : r.cameras)
+    for (size_t k = 0; k < c.search_ms.size(); ++k)
+      frames << fmt::format("{},{},{},{},{}\n", c.scene, c.objective, c.camera, k,
+                            num(c.search_ms[k]));
+  auto preds = open_out(dir / "predictions.csv");
+  preds << "scene,objective,repetition,camera,predictor,predicted_ms,search_total_ms,speedup,"
+           "overhead_reduction,roofline,break_even,config\n";
+  for (const PredictionRecord& p : r.predictions)
+    preds << fmt::format("{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", p.scene, p.objective,
+                         p.repetition, p.camera, p.predictor, num(p.predicted_ms),
+                         num(p.search_total_ms), num(p.speedup), num(p.overhead_reduction),
+                         num(p.roofline), num(p.break_even), p.config);
+}
+
+// gnuplot script for one figure, written as both PNG and SVG.
+void write_plot(const fs::path& dir, const std::string& stem, const std::string& body) {
+  for (const char* kind : {"png", "svg"}) {
+    auto f = open_out(dir / (stem + "." + kind + ".gp"));
+    if (std::string(kind) == "png")
+      f << "set terminal pngcairo size 900,500 font ',10'\n";
+    else
+      f << "set terminal svg size 900,500 font 'sans,10'\n";
+    f << "set output '" << stem << "." << kind << "'\n" << body;
+  }
+}
+
+bool run_gnuplot(const fs::path& dir) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
+  bool ok = true;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".gp") {
+      std::string cmd = fmt::format("cd '{}' && gnuplot '{}' 2>/dev/null", dir.string(),
+                                    entry.path().filename().string());
+      ok = std::system(cmd.c_str()) == 0 && ok;
+    }
+  return ok;
+}
+
+void write_plots(const EvalResults& r, const std::vector<EvalSummary>& summaries,
+                 const fs::path& dir) {
+  std::set<std::string> objectives;
+  std::vector<std::string> scenes;
+  for (const EvalSummary& s : summaries) {
+    objectives.insert(s.objective);
+    if (std::find(scenes.begin(), scenes.end(), s.scene) == scenes.end()) scenes.push_back(s.scene);
+  }
+  std::string xtics = "set xtics (";
+  for (size_t i = 0; i < scenes.size(); ++i)
+    xtics += fmt::format("{}'{}' {}", i ? ", " : "", scenes[i], i + 1);
+  xtics += ") rotate by -20\nset xrange [0.5:" + std::to_string(scenes.size() + 0.5) + "]\n";
+  auto scene_index = [&](const std::string& s) {
+    return static_cast<int>(std::find(scenes.begin(), scenes.end(), s) - scenes.begin() + 1);
+  };
+
+  // One box per (scene, series): each series is a block of its own in the data file (gnuplot's
+  // box plot cannot filter rows), plotted with `index`.
+  using Series = std::map<std::pair<int, int>, std::vector<double>>;
+  auto box_plot = [&](const std::string& file, const Series& series) {
+    auto d = open_out(dir / file);
+    std::string plot;
+    int block = 0;
+    double lo = 1.0, hi = 1.0;  // the reference line y = 1 stays in view
+    for (const auto& [key, values] : series) {
+      if (values.empty()) continue;
+      for (double v : values)
+        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+      if (block > 0) d << "\n\n";
+      for (double v : values) d << num(v) << '\n';
+      auto [scene, k] = key;
+      double x = series.rbegin()->first.second > 1 ? scene + (k == 1 ? -0.18 : 0.18) : scene;
+      plot += fmt::format("{}'{}' index {} using ({}):1 with boxplot lc {}",
+                          block == 0 ? "plot " : ", ", file, block, x, k);
+      ++block;
+    }
+    // gnuplot 5.4 cannot autoscale y for box plots at fixed x: give the range.
+    double pad = 0.05 * (hi - lo) + 1e-3;
+    std::string range = fmt::format("set yrange [{}:{}]\n", lo - pad, hi + pad);
+    return range + (plot.empty() ? std::string("plot 1 with lines lc 'gray'\n")
+                                 : plot + ", 1 with lines lc 'gray'\n");
+  };
+  const std::string box_style =
+      "set style boxplot outliers pointtype 7\nset boxwidth 0.3\n"
+      "set style fill solid 0.3\nset grid y\nunset key\n";
+
+  for (const std::string& obj : objectives) {
+    Series search, predicted;
+    for (const CameraRecord& c : r.cameras)
+      if (c.objective == obj) search[{scene_index(c.scene), 1}].push_back(c.search_speedup());
+    for (const PredictionRecord& pr : r.predictions)
+      if (pr.objective == obj)
+        predicted[{scene_index(pr.scene), pr.predictor == "nn" ? 1 : 2}].push_back(pr.speedup);
+    write_plot(dir, "search_speedup_" + obj,
+               "set title 'Converged search vs default configuration, per camera (" + obj +
+                   ")'\nset ylabel 'speedup'\n" + box_style + xtics +
+                   box_plot("search_speedup_" + obj + ".dat", search));
+    write_plot(dir, "predictor_speedup_" + obj,
+               "set title 'Prediction vs search, accumulated frame time (" + obj +
+                   "): left NN, right RBF'\nset ylabel 'speedup over search'\n" + box_style +
+                   xtics + box_plot("predictor_speedup_" + obj + ".dat", predicted));
+
+    auto roof = open_out(dir / ("roofline_" + obj + ".dat"));
+    auto be = open_out(dir / ("break_even_" + obj + ".dat"));
+    for (const PredictionRecord& pr : r.predictions) {
+      if (pr.objective != obj) continue;
+      int k = pr.predictor == "nn" ? 1 : 2;
+      roof << pr.camera + (k == 1 ? 0.0 : 0.3) + 100 * (scene_index(pr.scene) - 1) << ' '
+           << num(pr.roofline) << ' ' << k << '\n';
+      if (std::isfinite(pr.break_even)) be << pr.break_even << ' ' << k << '\n';
+    }
+    write_plot(
+        dir, "roofline_" + obj,
+        "set title 'Fraction of the best known configuration (" + obj +
+            ")'\n"
+            "set xlabel 'camera (100 x scene index + camera)'\nset ylabel 'best / predicted'\n"
+            "set yrange [0:1.1]\nset grid\nset key bottom right\n"
+            "plot 'roofline_" +
+            obj +
+            ".dat' using 1:($3==1?$2:1/0) title 'NN' pt 7 ps 0.6, "
+            "'' using 1:($3==2?$2:1/0) title 'RBF' pt 5 ps 0.6\n");
+    write_plot(dir, "break_even_" + obj,
+               "set title 'Break-even frame: when search pays for its exploration (" + obj +
+                   ")'\nset xlabel 'frame'\nset ylabel 'count'\nset style fill solid 0.5\n"
+                   "set boxwidth 4\nbin(x) = 10*floor(x/10) + 5\nset grid y\n"
+                   "plot 'break_even_" +
+                   obj +
+                   ".dat' using (bin($1)-2):($2==1?1:0) smooth "
+                   "frequency with boxes title 'NN', '' using (bin($1)+2):($2==2?1:0) smooth "
+                   "frequency with boxes title 'RBF'\n");
+  }
+}
+
+}  // namespace
+
+std::vector<EvalSummary> summarise(const EvalResults& r) {
+  std::vector<EvalSummary> out;
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const CameraRecord& c : r.cameras)
+    if (std::find(keys.begin(), keys.end(), std::pair{c.scene, c.objective}) == keys.end())
+      keys.emplace_back(c.scene, c.objective);
+  for (const auto& [scene, obj] : keys) {
+    EvalSummary s;
+    s.scene = scene;
+    s.objective = obj;
+    std::vector<double> search;
+    for (const CameraRecord& c : r.cameras)
+      if (c.scene == scene && c.objective == obj) search.push_back(c.search_speedup());
+    s.cameras = static_cast<int>(search.size());
+    s.search_speedup_median = median(search);
+    std::map<std::string, std::vector<double>> speed, overhead, roof, breakeven;
+    std::map<std::string, int> never;
+    for (const PredictionRecord& p : r.predictions) {
+      if (p.scene != scene || p.objective != obj) continue;
+      speed[p.predictor].push_back(p.speedup);
+      overhead[p.predictor].push_back(p.overhead_reduction);
+      roof[p.predictor].push_back(p.roofline);
+      if (std::isfinite(p.break_even))
+        breakeven[p.predictor].push_back(p.break_even);
+      else
+        ++never[p.predictor];
+    }
+    auto mean = [](const std::vector<double>& v) {
+      double sum = 0;
+      for (double x : v) sum += x;
+      return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+    };
+    s.nn_speedup_geomean = geometric_mean(speed["nn"]);
+    s.rbf_speedup_geomean = geometric_mean(speed["rbf"]);
+    s.nn_overhead_reduction_median = median(finite(overhead["nn"]));
+    s.rbf_overhead_reduction_median = median(finite(overhead["rbf"]));
+    s.nn_roofline_mean = mean(roof["nn"]);
+    s.rbf_roofline_mean = mean(roof["rbf"]);
+    s.nn_break_even_median = median(breakeven["nn"]);
+    s.rbf_break_even_median = median(breakeven["rbf"]);
+    s.nn_never = never["nn"];
+    s.rbf_never = never["rbf"];
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
+                              const std::string& command_line) {
+  fs::path dir(out_dir);
+  fs::create_directories(dir / "plots");
+  write_csvs(r, dir);
+  std::vector<EvalSummary> summaries = summarise(r);
+  {
+    auto f = open_out(dir / "summary.csv");
+    f << "scene,objective,cameras,search_speedup_median,nn_speedup_geomean,rbf_speedup_geomean,"
+         "nn_overhead_reduction_median,rbf_overhead_reduction_median,nn_roofline_mean,"
+         "rbf_roofline_mean,nn_break_even_median,rbf_break_even_median,nn_never,rbf_never\n";
+    for (const EvalSummary& s : summaries)
+      f << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.scene, s.objective,
+                       s.cameras, num(s.search_speedup_median), num(s.nn_speedup_geomean),
+                       num(s.rbf_speedup_geomean), num(s.nn_overhead_reduction_median),
+                       num(s.rbf_overhead_reduction_median), num(s.nn_roofline_mean),
+                       num(s.rbf_roofline_mean), num(s.nn_break_even_median),
+                       num(s.rbf_break_even_median), s.nn_never, s.rbf_never);
+  }
+  write_plots(r, summaries, dir / "plots");
+  bool plotted = run_gnuplot(dir / "plots");
+
+  const EvalProfile& p = r.profile;
+  fs::path report_path = dir / "report.md";
+  auto md = open_out(report_path);
+  md << "# BVH autotuning study (profile `" << p.name << "`)\n\n"
+     << "Command: `" << command_line << "`\n\n"
+     << fmt::format(
+            "Protocol: {} cameras per scene along its camera path, {} search frames per "
+            "camera (each builds the BVH as the objective requires and renders {} spp at "
+            "{}x{}, {} bounces); predictors trained on {:.0f} % of the cameras and "
+            "validated on the rest, {} random splits. Every configuration compared is "
+            "re-measured live (median of {}).\n\n",
+            p.cameras, p.iterations, p.spp, p.width, p.height, p.max_bounces,
+            100 * p.train_fraction, p.repetitions, p.measure_repeats);
+  for (const std::string obj : {"render", "total"}) {
+    bool any = false;
+    for (const EvalSummary& s : summaries) any |= s.objective == obj;
+    if (!any) continue;
+    md << "## Objective `" << obj << "` ("
+       << (obj == std::string("render") ? "render time, progressive rendering"
+                                        : "build + render time, real-time rendering")
+       << ")\n\n"
+       << "| scene | cameras | search speedup (median) | NN speedup over search (geo-mean) | "
+          "RBF speedup (geo-mean) | NN overhead reduction (median) | RBF overhead reduction | "
+          "NN roofline (mean) | RBF roofline | NN break-even (median frame, never) | RBF "
+          "break-even |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+    std::vector<double> nn_speed, rbf_speed, search_speed, nn_overhead, nn_roof, rbf_roof;
+    for (const EvalSummary& s : summaries) {
+      if (s.objective != obj) continue;
+      md << fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) |\n",
+                        s.scene, s.cameras, num(s.search_speedup_median), num(s.nn_speedup_geomean),
+                        num(s.rbf_speedup_geomean), num(s.nn_overhead_reduction_median),
+                        num(s.rbf_overhead_reduction_median), num(s.nn_roofline_mean),
+                        num(s.rbf_roofline_mean), num(s.nn_break_even_median), s.nn_never,
+                        num(s.rbf_break_even_median), s.rbf_never);
+      if (s.nn_speedup_geomean > 0) nn_speed.push_back(s.nn_speedup_geomean);
+      if (s.rbf_speedup_geomean > 0) rbf_speed.push_back(s.rbf_speedup_geomean);
+      search_speed.push_back(s.search_speedup_median);
+      nn_overhead.push_back(s.nn_overhead_reduction_median);
+      nn_roof.push_back(s.nn_roofline_mean);
+      rbf_roof.push_back(s.rbf_roofline_mean);
+    }
+    auto max_of = [](const std::vector<double>& v) {
+      return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+    };
+    auto mean_of = [](const std::vector<double>& v) {
+      double sum = 0;
+      for (double x : v) sum += x;
+      return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+    };
+    md << "\n| figure | ours | published (Herveau et al.) |\n|---|---|---|\n"
+       << fmt::format(
+              "| search speedup over default, median per scene (best scene) | {} | 1.11 "
+              "(sponza); 1.02–1.04 elsewhere |\n",
+              num(max_of(search_speed)))
+       << fmt::format("| NN speedup over search, geo-mean over scenes | {} | {} |\n",
+                      num(geometric_mean(nn_speed)), obj == std::string("render") ? "1.05" : "1.12")
+       << fmt::format("| RBF speedup over search, geo-mean over scenes | {} | {} |\n",
+                      num(geometric_mean(rbf_speed)), obj == std::string("render") ? "1.04" : "—")
+       << fmt::format("| best overhead reduction (NN, median per scene) | {} % | up to {} |\n",
+                      num(100 * max_of(nn_overhead)),
+                      obj == std::string("render") ? "87.5 %" : "89.3 %")
+       << fmt::format("| roofline, mean over scenes | NN {} %, RBF {} % | {} |\n\n",
+                      num(100 * mean_of(nn_roof)), num(100 * mean_of(rbf_roof)),
+                      obj == std::string("render") ? "> 95 %" : "NN 92 %, RBF 83 %");
+    if (plotted)
+      md << "![search speedup](plots/search_speedup_" << obj << ".png)\n"
+         << "![predictor speedup](plots/predictor_speedup_" << obj << ".png)\n"
+         << "![roofline](plots/roofline_" << obj << ".png)\n"
+         << "![break-even](plots/break_even_" << obj << ".png)\n\n";
+  }
+  if (!plotted) md << "Plots: gnuplot was not available or failed; the scripts are in plots/.\n\n";
+  md << "Definitions: *search speedup* = default / converged configuration, both re-measured "
+        "live; *speedup over search* = accumulated time of the search's frames / (frames x the "
+        "prediction's cost); *overhead reduction* = 1 - (prediction's accumulated time - frames "
+        "x best) / (search's accumulated time - frames x best); *roofline* = best / predicted "
+        "cost; *break-even* = first frame at which the search's accumulated time is no longer "
+        "above the prediction's (never = the search's converged configuration is not faster "
+        "than the prediction). A refused build counts as a frame at the default configuration's "
+        "cost. Raw data: cameras.csv, search_frames.csv, predictions.csv, summary.csv.\n";
+  return report_path.string();
+}
+
+}  // namespace tuneray

@@ -1,0 +1,35 @@
+// Writes the study's results: raw CSV files, summary tables in report.md beside the published
+// figures, and gnuplot plots (PNG and SVG).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tuning/eval_study.h"
+
+namespace tuneray {
+
+// Per scene and objective, the aggregated figures shown in the report.
+struct EvalSummary {
+  std::string scene, objective;
+  int cameras = 0;
+  double search_speedup_median = 0;  // default / converged, over cameras
+  double nn_speedup_geomean = 0;     // prediction over search, accumulated frames
+  double rbf_speedup_geomean = 0;
+  double nn_overhead_reduction_median = 0;
+  double rbf_overhead_reduction_median = 0;
+  double nn_roofline_mean = 0;
+  double rbf_roofline_mean = 0;
+  double nn_break_even_median = 0;  // over the finite ones
+  double rbf_break_even_median = 0;
+  int nn_never = 0, rbf_never = 0;  // predictions the search never catches up with
+};
+
+std::vector<EvalSummary> summarise(const EvalResults& results);
+
+// Writes cameras.csv, search_frames.csv, predictions.csv, summary.csv, report.md and plots/ in
+// `out_dir`. Plots need gnuplot; without it the report says so. Returns the report's path.
+std::string write_eval_report(const EvalResults& results, const std::string& out_dir,
+                              const std::string& command_line);
+
+}  // namespace tuneray

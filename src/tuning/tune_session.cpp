@@ -1,0 +1,110 @@
+#include "tuning/tune_session.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "scene/camera_spline.h"
+#include "scene/indicators.h"
+#include "scene/load.h"
+#include "tuner/hybrid_tuner.h"
+#include "tuning/bvh_space.h"
+#include "tuning/stats.h"
+#include "tuning/tuner_state.h"
+
+namespace tuneray {
+
+tuner::PredictorKind parse_predictor(const std::string& text) {
+  if (text == "nn") return tuner::PredictorKind::kNearestNeighbour;
+  if (text == "rbf") return tuner::PredictorKind::kRbf;
+  if (text == "both") return tuner::PredictorKind::kBoth;
+  throw std::invalid_argument("bad predictor '" + text + "': expected nn, rbf or both");
+}
+
+std::vector<CameraDesc> camera_positions(const Scene& scene, int path_index, int count) {
+  if (path_index < 0 ||
+      (path_index > 0 && path_index >= static_cast<int>(scene.camera_paths.size())))
+    throw std::invalid_argument("bad camera path " + std::to_string(path_index) +
+                                ": the scene has " + std::to_string(scene.camera_paths.size()));
+  CameraPath path =
+      scene.camera_paths.empty() ? automatic_camera_path(scene) : scene.camera_paths[path_index];
+  return sample_camera_path(path, count);
+}
+
+std::string tuning_key(const TuneOptions& o) {
+  // Costs are only comparable at the same objective, image size, spp and path length.
+  return fmt::format("bvh/{}/{}x{}/{}spp/{}b", to_string(o.objective), o.width, o.height, o.spp,
+                     o.max_bounces);
+}
+
+TuneReport run_tune_session(const TuneOptions& o,
+                            const std::function<void(const std::string&)>& log) {
+  if (o.iterations < 1 || o.cameras < 1 || o.spp < 1 || o.baseline_repeats < 1)
+    throw std::invalid_argument("iterations, cameras, spp and repeats must be >= 1");
+  if (!(o.epsilon >= 0 && o.epsilon <= 1)) throw std::invalid_argument("epsilon must be in [0, 1]");
+  LoadOptions load_options;
+  load_options.scenes_dir = o.scenes_dir;
+  Scene scene = load_scene(o.scene, load_options);
+  std::vector<CameraDesc> cameras = camera_positions(scene, o.camera_path, o.cameras);
+  SceneIndicators scene_indicators = compute_scene_indicators(scene);
+
+  tuner::TunerOptions options;
+  options.epsilon = o.epsilon;
+  options.predictor = parse_predictor(o.predictor);
+  options.seed = o.seed;
+  options.search.max_iterations = o.iterations;
+  options.db_path = o.db_path;
+  options.tuning_key = tuning_key(o);
+  tuner::Space space = make_bvh_space();
+  tuner::HybridTuner tuner(space, make_indicator_schema(), options);
+
+  RenderSettings settings;
+  settings.width = o.width;
+  settings.height = o.height;
+  settings.max_bounces = o.max_bounces;
+  settings.seed = o.seed;
+  FrameBench bench(scene, settings, o.spp, o.objective);
+  const BvhConfig default_config;
+  bench.run(default_config, cameras[0]);  // warm-up: threads, caches, page faults (not counted)
+
+  TuneReport report;
+  for (size_t ci = 0; ci < cameras.size(); ++ci) {
+    tuner::State state = to_tuner_state(compute_indicators(scene_indicators, cameras[ci]));
+    CameraTuneResult r;
+    r.camera = static_cast<int>(ci);
+    for (int it = 0; it < o.iterations; ++it) {
+      tuner::Config c = tuner.suggest(state);
+      if (it == 0) r.mode = tuner.mode() == tuner::TunerMode::kSearch ? "search" : "exploit";
+      FrameCost cost = bench.run(to_bvh_config(c), cameras[ci]);
+      tuner::Extras extras = {{"build_ms", cost.build_ms}, {"render_ms", cost.render_ms}};
+      if (cost.ok) {
+        tuner.report(c, cost.cost_ms(o.objective) / 1000.0, extras);
+        r.accumulated_ms += cost.cost_ms(o.objective);
+      } else {
+        tuner.report_failure(c, extras);
+        ++report.failed_builds;
+      }
+      ++r.frames;
+    }
+    // Side by side: the default and the chosen configuration, alternately, medians.
+    BvhConfig chosen = to_bvh_config(tuner.best(state));
+    std::vector<double> default_ms, chosen_ms;
+    for (int k = 0; k < o.baseline_repeats; ++k) {
+      default_ms.push_back(bench.run(default_config, cameras[ci]).cost_ms(o.objective));
+      chosen_ms.push_back(bench.run(chosen, cameras[ci]).cost_ms(o.objective));
+    }
+    r.default_ms = median(default_ms);
+    r.chosen_ms = median(chosen_ms);
+    r.config = chosen.to_string();
+    if (auto s = tuner.summary(state)) r.converged = s->converged;
+    if (log)
+      log(fmt::format(
+          "camera {:>3} {:<8} default {:8.2f} ms  chosen {:8.2f} ms  speedup {:5.2f}  {}", r.camera,
+          r.mode, r.default_ms, r.chosen_ms, r.speedup(), r.config));
+    report.cameras.push_back(r);
+  }
+  return report;
+}
+
+}  // namespace tuneray

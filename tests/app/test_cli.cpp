@@ -1,0 +1,99 @@
+// The command line on good and bad input: bad input gives a clear message naming the file or
+// value, a non-zero exit code, and never a crash (a signal).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "run_command.h"
+
+namespace tuneray {
+namespace {
+
+using testing::CommandResult;
+using testing::run_tuneray;
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("tuneray-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& content) {
+    std::filesystem::path p = dir_ / name;
+    std::ofstream(p) << content;
+    return p.string();
+  }
+  std::filesystem::path dir_;
+};
+
+void expect_clean_failure(const CommandResult& r, const std::string& must_mention) {
+  EXPECT_FALSE(r.signaled) << "killed by signal " << r.signal << "\n" << r.output;
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(must_mention), std::string::npos)
+      << "message does not mention '" << must_mention << "':\n"
+      << r.output;
+}
+
+TEST_F(Cli, RendersTheDefaultSceneAndWritesEveryRequestedFormat) {
+  std::string png = (dir_ / "c.png").string(), exr = (dir_ / "c.exr").string(),
+              pfm = (dir_ / "c.pfm").string(), report = (dir_ / "r.json").string();
+  CommandResult r = run_tuneray({"render", "cornell", "--spp", "2", "--size", "32x24", "--out", png,
+                                 "--out", exr, "--out", pfm, "--report", report, "--quiet"});
+  ASSERT_FALSE(r.signaled) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const auto& f : {png, exr, pfm, report}) EXPECT_GT(std::filesystem::file_size(f), 0u) << f;
+}
+
+TEST_F(Cli, MissingSceneFileIsNamed) {
+  expect_clean_failure(run_tuneray({"render", (dir_ / "nope.obj").string(), "--quiet"}),
+                       "nope.obj");
+}
+
+TEST_F(Cli, MalformedObjIsNamed) {
+  std::string obj = write("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+  expect_clean_failure(run_tuneray({"info", obj}), "bad.obj");
+}
+
+TEST_F(Cli, NanVertexIsNamed) {
+  std::string obj = write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+  expect_clean_failure(run_tuneray({"info", obj}), "nan.obj");
+}
+
+TEST_F(Cli, EmptyFileIsNamed) {
+  std::string obj = write("empty.obj", "");
+  expect_clean_failure(run_tuneray({"info", obj}), "empty.obj");
+}
+
+TEST_F(Cli, UnknownExtensionIsNamed) {
+  std::string f = write("scene.xyz", "hello");
+  expect_clean_failure(run_tuneray({"info", f}), "scene.xyz");
+}
+
+TEST_F(Cli, BadJsonIsNamed) {
+  std::string f = write("scene.json", "{ \"mesh\": ");
+  expect_clean_failure(run_tuneray({"info", f}), "scene.json");
+}
+
+TEST_F(Cli, BadOptionValuesAreRejected) {
+  expect_clean_failure(run_tuneray({"render", "cornell", "--size", "12by7"}), "12by7");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--spp", "-3"}), "spp");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--accel", "octree"}), "octree");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--camera", "99", "--quiet"}), "camera");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--bvh", "quality"}), "quality");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--out", (dir_ / "x.bmp").string(),
+                                    "--spp", "1", "--size", "8x8", "--quiet"}),
+                       "x.bmp");
+}
+
+TEST_F(Cli, UnknownCommandFails) {
+  CommandResult r = run_tuneray({"frobnicate"});
+  EXPECT_FALSE(r.signaled);
+  EXPECT_NE(r.exit_code, 0);
+}
+
+}  // namespace
+}  // namespace tuneray

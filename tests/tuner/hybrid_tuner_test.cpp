@@ -1,0 +1,182 @@
+#include "tuner/hybrid_tuner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "bvh_space.h"
+#include "synthetic_problem.h"
+
+namespace tuneray::tuner {
+namespace {
+
+using testing::kernel_cost;
+using testing::kernel_schema;
+using testing::kernel_space;
+
+struct EventCounts {
+  int started = 0;
+  int resumed = 0;
+  int finished = 0;
+  int predicted = 0;
+};
+
+EventCounts* attach_counter(HybridTuner& tuner, EventCounts& counts) {
+  tuner.set_event_listener([&counts](const TunerEvent& e) {
+    if (e.kind == TunerEventKind::kSearchStarted) ++counts.started;
+    if (e.kind == TunerEventKind::kSearchResumed) ++counts.resumed;
+    if (e.kind == TunerEventKind::kSearchFinished) ++counts.finished;
+    if (e.kind == TunerEventKind::kPredicted) ++counts.predicted;
+  });
+  return &counts;
+}
+
+void run_state(HybridTuner& tuner, double size, int steps) {
+  const State state{size};
+  for (int i = 0; i < steps; ++i) {
+    const Config c = tuner.suggest(state);
+    tuner.report(c, kernel_cost(state, c));
+  }
+}
+
+TunerOptions fast_options(double epsilon) {
+  TunerOptions options;
+  options.epsilon = epsilon;
+  options.search.max_iterations = 30;
+  options.search.max_repeats = 1;  // the synthetic cost is noise-free
+  return options;
+}
+
+TEST(HybridTuner, EpsilonOneSearchesAtEveryStateChange) {
+  HybridTuner tuner(kernel_space(), kernel_schema(), fast_options(1.0));
+  EventCounts counts;
+  attach_counter(tuner, counts);
+  const double sizes[] = {100, 400, 100, 700, 400, 700};
+  for (double size : sizes) run_state(tuner, size, 5);
+  // Six state changes: three new searches, three resumed (unfinished after 5 steps).
+  EXPECT_EQ(counts.started + counts.resumed, 6);
+  EXPECT_EQ(counts.started, 3);
+  EXPECT_EQ(counts.predicted, 0);
+}
+
+TEST(HybridTuner, EpsilonZeroAfterTrainingNeverSearches) {
+  HybridTuner tuner(kernel_space(), kernel_schema(), fast_options(1.0));
+  for (double size : {0.0, 300.0, 600.0, 900.0}) run_state(tuner, size, 400);
+  for (const auto& s : tuner.summaries()) EXPECT_FALSE(s.searching);
+  tuner.set_epsilon(0.0);
+  EventCounts counts;
+  attach_counter(tuner, counts);
+  for (double size : {150.0, 450.0, 0.0, 750.0, 1000.0, 300.0}) run_state(tuner, size, 3);
+  EXPECT_EQ(counts.started + counts.resumed, 0);
+  EXPECT_EQ(counts.predicted, 6);
+}
+
+TEST(HybridTuner, SearchFindsTheOptimumAndSummaryReportsIt) {
+  HybridTuner tuner(kernel_space(), kernel_schema(), fast_options(1.0));
+  run_state(tuner, 450.0, 300);  // best block 2^4 = 16, unroll 4
+  const auto summary = tuner.summary(State{450.0});
+  ASSERT_TRUE(summary);
+  EXPECT_TRUE(summary->searched);
+  EXPECT_FALSE(summary->searching);
+  EXPECT_TRUE(summary->converged);
+  EXPECT_GT(summary->search_iterations, 0);
+  ASSERT_TRUE(summary->incumbent);
+  EXPECT_EQ(summary->incumbent->get_int("block"), 16);
+  EXPECT_EQ(summary->incumbent->get_int("unroll"), 4);
+  EXPECT_DOUBLE_EQ(summary->incumbent_cost, 5.5);
+  EXPECT_EQ(tuner.best(State{450.0}), *summary->incumbent);
+  EXPECT_EQ(tuner.mode(), TunerMode::kExploit);
+  EXPECT_EQ(tuner.candidates().size(), 1u);
+}
+
+TEST(HybridTuner, UnseenStatesGetNearBestPredictionsWithoutSearching) {
+  TunerOptions options = fast_options(1.0);
+  options.predictor = PredictorKind::kNearestNeighbour;
+  HybridTuner tuner(kernel_space(), kernel_schema(), options);
+  for (double size : {0.0, 150.0, 300.0, 450.0, 600.0, 750.0, 900.0}) run_state(tuner, size, 300);
+  tuner.set_epsilon(0.0);
+  for (double size : {160.0, 440.0, 760.0}) {
+    const State state{size};
+    const Config c = tuner.suggest(state);
+    // The nearest trained state's optimum is one block step away at most: within 10 %.
+    Config best = c;
+    best.set_int("block", 1 << static_cast<int>(std::lround(1.0 + size / 150.0)));
+    best.set_int("unroll", 4);
+    EXPECT_LE(kernel_cost(state, c), 1.10 * kernel_cost(state, best)) << c.to_string();
+    EXPECT_EQ(tuner.mode(), TunerMode::kExploit);
+  }
+}
+
+TEST(HybridTuner, ThresholdForcesSearchOfFarStatesWarmStarted) {
+  TunerOptions options = fast_options(0.0);
+  options.nn_threshold = 0.05;  // 50 units of size
+  HybridTuner tuner(kernel_space(), kernel_schema(), options);
+  EventCounts counts;
+  attach_counter(tuner, counts);
+  run_state(tuner, 300.0, 200);  // nothing known: searched even with epsilon 0
+  run_state(tuner, 320.0, 2);    // near: predicted
+  run_state(tuner, 600.0, 2);    // far: searched
+  EXPECT_EQ(counts.started, 2);
+  EXPECT_EQ(counts.predicted, 1);
+}
+
+TEST(HybridTuner, FailuresAreRecordedAndNeverBest) {
+  HybridTuner tuner(kernel_space(), kernel_schema(), fast_options(1.0));
+  const State state{450.0};
+  int failures = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Config c = tuner.suggest(state);
+    if (c.get_int("unroll") == 8) {  // e.g. a build that runs out of registers
+      tuner.report_failure(c, {{"build_ms", 1.0}});
+      ++failures;
+    } else {
+      tuner.report(c, kernel_cost(state, c));
+    }
+  }
+  EXPECT_GT(failures, 0);
+  const Config best = tuner.best(state);
+  EXPECT_NE(best.get_int("unroll"), 8);
+  EXPECT_EQ(best.get_int("block"), 16);
+  EXPECT_TRUE(std::isfinite(tuner.summary(state)->incumbent_cost));
+  for (double theta : tuner.gq().theta()) EXPECT_TRUE(std::isfinite(theta));
+}
+
+TEST(HybridTuner, ConditionalParametersAreNotSearchedWhenInactive) {
+  const Space space = testing::bvh_space();
+  IndicatorSchema schema;
+  schema.add("triangles", 0, 1e7);
+  TunerOptions options = fast_options(1.0);
+  options.search.max_iterations = 40;
+  HybridTuner tuner(space, schema, options);
+  const State state{1e6};
+  for (int i = 0; i < 300; ++i) {
+    const Config c = tuner.suggest(state);
+    EXPECT_LE(c.get_int("min_leaf"), c.get_int("max_leaf"));
+    if (c.get_enum("quality") == "low") {
+      EXPECT_EQ(c.get_int("sah_block_size"), 1) << c.to_string();
+      EXPECT_EQ(c.get_real("cost_ratio"), 1.0) << c.to_string();
+    }
+    // Low quality builds fastest here; block size would matter only if it were active.
+    const double quality = c.get_enum("quality") == "low" ? 1.0 : 2.0;
+    tuner.report(c, quality + 0.01 * std::abs(c.get_int("max_leaf") - 8));
+  }
+  EXPECT_EQ(tuner.best(state).get_enum("quality"), "low");
+}
+
+TEST(HybridTuner, RejectsMisuse) {
+  HybridTuner tuner(kernel_space(), kernel_schema(), fast_options(0.5));
+  const Config c = tuner.space().default_config();
+  EXPECT_THROW(tuner.report(c, 1.0), std::logic_error);  // before suggest
+  tuner.suggest(State{10.0});
+  EXPECT_THROW(tuner.report(c, -1.0), std::invalid_argument);
+  EXPECT_THROW(tuner.report(c, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(tuner.suggest(State{1.0, 2.0}), std::invalid_argument);
+  TunerOptions bad;
+  bad.epsilon = 2.0;
+  EXPECT_THROW(HybridTuner(kernel_space(), kernel_schema(), bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tuneray::tuner

@@ -1,0 +1,65 @@
+// The BVH search space: mapping to BvhConfig and back, conditions and the constraint.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tuning/bvh_space.h"
+#include "tuning/tuner_state.h"
+
+namespace tuneray {
+namespace {
+
+TEST(BvhSpace, DefaultsAreEmbreesRecommendedOnes) {
+  tuner::Space space = make_bvh_space();
+  EXPECT_EQ(space.size(), 10u);  // 11 parameters, the two costs folded into one ratio
+  EXPECT_EQ(to_bvh_config(space.default_config()), BvhConfig{});
+}
+
+TEST(BvhSpace, RoundTripsEveryParameter) {
+  tuner::Space space = make_bvh_space();
+  BvhConfig b;
+  b.quality = BvhQuality::kHigh;
+  b.branching = 8;
+  b.max_depth = 40;
+  b.sah_block_size = 4;
+  b.min_leaf = 2;
+  b.max_leaf = 12;
+  b.set_cost_ratio(4.0f);
+  b.is_static = true;
+  b.compact = true;
+  b.robust = true;
+  BvhConfig back = to_bvh_config(to_tuner_config(space, b));
+  EXPECT_EQ(back.to_string(), b.to_string());
+}
+
+TEST(BvhSpace, MortonIgnoresSahParametersSoTheyCollapse) {
+  tuner::Space space = make_bvh_space();
+  BvhConfig a, b;
+  a.quality = b.quality = BvhQuality::kLow;
+  a.sah_block_size = 8;
+  a.max_leaf = 4;
+  a.set_cost_ratio(10.0f);
+  EXPECT_EQ(to_tuner_config(space, a), to_tuner_config(space, b));
+  a.quality = b.quality = BvhQuality::kMedium;
+  EXPECT_NE(to_tuner_config(space, a), to_tuner_config(space, b));
+}
+
+TEST(BvhSpace, EveryDecodedPointIsAValidBvhConfig) {
+  tuner::Space space = make_bvh_space();
+  for (int i = 0; i < 200; ++i) {
+    std::vector<double> point(space.size());
+    for (size_t d = 0; d < point.size(); ++d) point[d] = std::fmod(0.37 * (i + 1) * (d + 3), 1.0);
+    tuner::Config c = space.feasible(point);
+    BvhConfig b = to_bvh_config(c);
+    EXPECT_LE(b.min_leaf, b.max_leaf) << c.to_string();
+    EXPECT_EQ(b.validate(), "") << c.to_string();
+  }
+}
+
+TEST(TunerState, SchemaHasSeventeenIndicatorsInRange) {
+  tuner::IndicatorSchema schema = make_indicator_schema();
+  EXPECT_EQ(schema.size(), 17u);
+}
+
+}  // namespace
+}  // namespace tuneray
