@@ -115,9 +115,12 @@ Scene embree_cornell_scene() {
 int run_bench_render(const BenchRenderArgs& a) {
   auto [width, height] = parse_size(a.size);
   std::vector<std::string> scenes = a.scenes;
+  LoadOptions load_options;
+  load_options.scenes_dir = find_shared_scenes_dir(a.scenes_dir);
   if (scenes.empty()) {
     scenes.push_back("cornell");
-    for (auto& f : shared_scene_files(find_shared_scenes_dir(a.scenes_dir))) scenes.push_back(f);
+    if (!load_options.scenes_dir.empty())
+      for (auto& f : shared_scene_json_files()) scenes.push_back(f);
   }
   nlohmann::json json = {{"size", a.size},
                          {"spp", a.spp},
@@ -127,7 +130,7 @@ int run_bench_render(const BenchRenderArgs& a) {
   fmt::print("{:<28} {:>10} {:>10} {:>11} {:>9}\n", "scene", "triangles", "build ms", "ms per spp",
              "Mrays/s");
   for (const std::string& spec : scenes) {
-    Scene scene = load_scene(spec);
+    Scene scene = load_scene(spec, load_options);
     std::string name = std::filesystem::path(spec).stem().string();
     SceneResult r = bench_scene(name, scene, a, width, height, a.spp, a.max_bounces);
     fmt::print("{:<28} {:>10} {:>10.1f} {:>11.2f} {:>9.2f}\n", r.scene, r.triangles, r.build_ms,

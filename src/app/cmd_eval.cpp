@@ -30,12 +30,16 @@ struct EvalArgs {
 };
 
 int run_eval(const EvalArgs& a) {
-  EvalProfile p = eval_profile(a.profile, shared_scene_files(find_shared_scenes_dir(a.scenes_dir)));
+  std::string scenes_dir = find_shared_scenes_dir(a.scenes_dir);
+  EvalProfile p = eval_profile(
+      a.profile, scenes_dir.empty() ? std::vector<std::string>{} : shared_scene_json_files());
+  p.scenes_dir = scenes_dir;
   if (!a.scenes.empty()) p.scenes = a.scenes;
   if (p.scenes.empty())
     throw std::invalid_argument("profile '" + a.profile +
-                                "' needs the shared scenes: none found (use --scenes-dir or "
-                                "$TUNERAY_SCENES, or list scenes)");
+                                "' needs the shared scenes (../shared/scenes) and this checkout's "
+                                "scenes/*.json: not found (use --scenes-dir or $TUNERAY_SCENES, "
+                                "or --scenes)");
   if (a.cameras > 0) p.cameras = a.cameras;
   if (a.iterations > 0) p.iterations = a.iterations;
   if (a.repetitions > 0) p.repetitions = a.repetitions;

@@ -13,10 +13,13 @@
 #include "app/cli_parse.h"
 #include "app/commands.h"
 #include "app/progress.h"
+#include "app/quality_cli.h"
 #include "image/io.h"
 #include "render/film.h"
+#include "render/frame_budget.h"
 #include "render/tile_renderer.h"
 #include "scene/load.h"
+#include "scene/one_texel.h"
 
 namespace tuneray {
 
@@ -39,6 +42,9 @@ struct RenderArgs {
   std::string scenes_dir;
   float exposure = 0;
   bool quiet = false;
+  double frame_ms = 0;  // > 0: frame-budget mode
+  int frames = 1;
+  QualityCli quality;
 };
 
 double ms_since(std::chrono::steady_clock::time_point start) {
@@ -79,6 +85,9 @@ int run_render(const RenderArgs& a) {
   settings.tile_size = a.tile_size;
   settings.seed = a.seed;
   settings.strategy = parse_strategy(a.strategy);
+  settings.quality = resolve_quality(a.quality);
+  if (settings.quality.adaptive && a.frame_ms <= 0)
+    throw std::invalid_argument("--adaptive needs the frame-budget mode (--frame-ms)");
 
   std::unique_ptr<tbb::global_control> thread_limit;
   if (a.threads > 0)
@@ -89,6 +98,8 @@ int run_render(const RenderArgs& a) {
   LoadOptions load_options;
   load_options.scenes_dir = a.scenes_dir;
   Scene scene = load_scene(a.scene, load_options);
+  OneTexelStats one_texel;
+  if (a.quality.one_texel) one_texel = collapse_one_texel_textures(scene);
   double load_ms = ms_since(t0);
   if (a.camera < 0 || a.camera >= static_cast<int>(scene.cameras.size()))
     throw std::invalid_argument("bad --camera " + std::to_string(a.camera) + ": scene '" + a.scene +
@@ -103,15 +114,23 @@ int run_render(const RenderArgs& a) {
   TileRenderer renderer(scene, *accel, scene.cameras[a.camera], settings, sampler);
   Film film(width, height);
   ProgressBar progress("render", static_cast<uint64_t>(renderer.tile_count()) * a.spp,
-                       !a.quiet && stderr_is_terminal());
+                       !a.quiet && a.frame_ms <= 0 && stderr_is_terminal());
   PassStats total;
-  for (int s = 0; s < a.spp; ++s) {
+  nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+  if (a.frame_ms > 0) {
+    FrameBudgetRenderer budget(renderer, a.frame_ms);
+    for (int f = 0; f < a.frames; ++f) {
+      FrameResult frame = budget.render_frame(film);
+      total.accumulate(frame.stats);
+      frames.push_back({{"frame", f}, {"ms", frame.ms}, {"spp", frame.spp}});
+      if (!a.quiet)
+        std::cout << "frame     " << f << ": " << frame.spp << " spp in " << frame.ms << " ms\n";
+    }
+  }
+  for (int s = 0; a.frame_ms <= 0 && s < a.spp; ++s) {
     PassStats pass = renderer.render_pass(film, static_cast<uint32_t>(s), 1,
                                           [&progress] { progress.advance(); });
-    total.render_ms += pass.render_ms;
-    total.rays += pass.rays;
-    total.shadow_rays += pass.shadow_rays;
-    total.invalid_samples += pass.invalid_samples;
+    total.accumulate(pass);
   }
   progress.finish();
 
@@ -133,7 +152,11 @@ int run_render(const RenderArgs& a) {
       {"triangles", scene.triangles.size()},
       {"width", width},
       {"height", height},
-      {"spp", a.spp},
+      {"spp", a.frame_ms > 0 ? static_cast<double>(total.samples) / (width * height)
+                             : static_cast<double>(a.spp)},
+      {"frame_ms", a.frame_ms},
+      {"frames", frames},
+      {"one_texel_triangles", one_texel.collapsed},
       {"accel", accel->name()},
       {"accel_config", accel->describe()},
       {"load_ms", load_ms},
@@ -157,7 +180,8 @@ int run_render(const RenderArgs& a) {
               << " triangles, loaded in " << static_cast<int>(load_ms) << " ms)\n"
               << "accel     " << accel->name() << " " << accel->describe() << ", built in "
               << build.build_ms << " ms\n"
-              << "render    " << width << "x" << height << ", " << a.spp << " spp in "
+              << "render    " << width << "x" << height << ", "
+              << static_cast<double>(total.samples) / (width * height) << " spp in "
               << total.render_ms << " ms (" << total.mrays_per_s() << " Mrays/s)\n";
     for (const auto& out : outputs) std::cout << "wrote     " << out << "\n";
     if (!a.report.empty()) std::cout << "wrote     " << a.report << "\n";
@@ -201,6 +225,13 @@ CommandAction add_render_command(CLI::App& app) {
   cmd->add_option("--exposure", args->exposure, "Exposure in stops for PNG output")
       ->capture_default_str();
   cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
+  cmd->add_option("--frame-ms", args->frame_ms,
+                  "Frame budget in ms: each frame adds as many spp as fit (replaces --spp)")
+      ->check(CLI::Range(0.0, 1e7));
+  cmd->add_option("--frames", args->frames, "Frames to accumulate in frame-budget mode")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  add_quality_options(cmd, args->quality);
   return [args] { return run_render(*args); };
 }
 

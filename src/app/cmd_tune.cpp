@@ -27,9 +27,20 @@ int run_tune(TuneArgs& a) {
   fmt::print("tuning {} (objective {}, {} cameras x {} frames, {}x{}, {} spp) into {}\n",
              a.options.scene, a.objective, a.options.cameras, a.options.iterations, a.options.width,
              a.options.height, a.options.spp, a.options.db_path);
-  TuneReport report = run_tune_session(a.options, [&](const std::string& line) {
-    if (!a.quiet) std::cout << line << std::endl;
-  });
+  ProgressBar bar("tune", static_cast<uint64_t>(a.options.cameras) * a.options.iterations,
+                  !a.quiet && stderr_is_terminal());
+  TuneReport report = run_tune_session(
+      a.options,
+      [&](const std::string& line) {
+        bar.finish();
+        if (!a.quiet) std::cout << line << std::endl;
+      },
+      [&](const TuneProgress& p) {
+        bar.set_suffix(fmt::format("camera {}/{}, best speedup {:.2f}x", p.camera + 1,
+                                   a.options.cameras, p.best_speedup));
+        bar.advance();
+      });
+  bar.finish();
   std::vector<double> speedups;
   int searched = 0;
   for (const auto& c : report.cameras) {

@@ -7,17 +7,23 @@ namespace tuneray {
 
 namespace fs = std::filesystem;
 
+namespace {
+// The checkout holding the running executable (build/src/app/tuneray → three levels up).
+fs::path checkout_root() {
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  return exe.parent_path().parent_path().parent_path().parent_path();
+}
+}  // namespace
+
 std::string find_shared_scenes_dir(const std::string& override_dir) {
   if (!override_dir.empty()) return override_dir;
   if (const char* env = std::getenv("TUNERAY_SCENES")) return env;
   std::vector<fs::path> candidates = {"../shared/scenes", "shared/scenes", "../../shared/scenes"};
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    // build/src/app/tuneray → checkout root is three levels up; shared/ sits beside it.
-    fs::path root = exe.parent_path().parent_path().parent_path().parent_path();
+  if (fs::path root = checkout_root(); !root.empty())
     candidates.push_back(root.parent_path() / "shared" / "scenes");
-  }
+  std::error_code ec;
   for (const auto& c : candidates)
     if (fs::is_directory(c, ec)) return fs::weakly_canonical(c).string();
   return "";
@@ -40,6 +46,25 @@ std::vector<std::string> shared_scene_files(const std::string& scenes_dir) {
   for (const char* f : kFiles) {
     fs::path p = fs::path(scenes_dir) / f;
     if (fs::exists(p)) out.push_back(p.string());
+  }
+  return out;
+}
+
+}  // namespace tuneray
+
+namespace tuneray {
+
+std::vector<std::string> shared_scene_json_files() {
+  static const char* kFiles[] = {
+      "cornell-box-water.json", "teapot.json",     "stanford-bunny.json", "lost-empire.json",
+      "sports-car.json",        "conference.json", "bmw-m6.json"};
+  std::vector<std::string> out;
+  for (const fs::path& dir : {fs::path("scenes"), checkout_root() / "scenes"}) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) continue;
+    for (const char* f : kFiles)
+      if (fs::exists(dir / f)) out.push_back((dir / f).string());
+    if (!out.empty()) break;
   }
   return out;
 }

@@ -13,4 +13,9 @@ std::string find_shared_scenes_dir(const std::string& override_dir = "");
 // Paths of the mesh files of the shared scenes, smallest first (empty when none is found).
 std::vector<std::string> shared_scene_files(const std::string& scenes_dir);
 
+// The JSON scene files of this checkout (scenes/*.json: cameras, camera paths and lights for
+// every shared scene), smallest scene first. Their meshes resolve against the shared scenes
+// folder. Empty when the checkout's scenes/ folder is not found.
+std::vector<std::string> shared_scene_json_files();
+
 }  // namespace tuneray

@@ -19,7 +19,24 @@ Vec3f EnvironmentLight::uv_to_direction(Vec2f uv) {
   return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
 }
 
-EnvironmentLight::EnvironmentLight(const Environment& env) : scale_(env.scale) {
+namespace {
+TexelRgba to_rgba(Color c) {
+  return {{c.x, c.y, c.z, 0.0f}};
+}
+Color from_rgba(const TexelRgba& t) {
+  return {t.v[0], t.v[1], t.v[2]};
+}
+// Texel index of `dir` in a w x h equirectangular grid.
+size_t texel_index(Vec3f dir, int w, int h) {
+  Vec2f uv = EnvironmentLight::direction_to_uv(dir);
+  int x = std::clamp(static_cast<int>(uv.x * w), 0, w - 1);
+  int y = std::clamp(static_cast<int>(uv.y * h), 0, h - 1);
+  return static_cast<size_t>(y) * w + x;
+}
+}  // namespace
+
+EnvironmentLight::EnvironmentLight(const Environment& env, const EnvironmentOptions& options)
+    : scale_(env.scale) {
   active_ = env.active() && env.scale > 0;
   if (!active_) return;
   if (env.map.empty()) {
@@ -41,6 +58,27 @@ EnvironmentLight::EnvironmentLight(const Environment& env) : scale_(env.scale) {
     }
   }
   distribution_ = Distribution2D(weights, w, h);
+  if (options.rgba_texels) {
+    rgba_.resize(static_cast<size_t>(w) * h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        rgba_[static_cast<size_t>(y) * w + x] = to_rgba(map_->at(x, y) * scale_);
+  }
+  if (options.lowres) {
+    lowres_width_ = (w + kLowresBlock - 1) / kLowresBlock;
+    lowres_height_ = (h + kLowresBlock - 1) / kLowresBlock;
+    lowres_.resize(static_cast<size_t>(lowres_width_) * lowres_height_);
+    for (int by = 0; by < lowres_height_; ++by)
+      for (int bx = 0; bx < lowres_width_; ++bx) {
+        Color sum(0.0f);
+        int n = 0;
+        for (int y = by * kLowresBlock; y < std::min(h, (by + 1) * kLowresBlock); ++y)
+          for (int x = bx * kLowresBlock; x < std::min(w, (bx + 1) * kLowresBlock); ++x, ++n)
+            sum += map_->at(x, y);
+        lowres_[static_cast<size_t>(by) * lowres_width_ + bx] =
+            to_rgba(sum * (scale_ / static_cast<float>(std::max(n, 1))));
+      }
+  }
   mean_luminance_ = weight_sum > 0 ? static_cast<float>(sum / weight_sum) * scale_ : 0.0f;
   if (!(mean_luminance_ > 0)) active_ = false;
 }
@@ -48,10 +86,16 @@ EnvironmentLight::EnvironmentLight(const Environment& env) : scale_(env.scale) {
 Color EnvironmentLight::eval(Vec3f dir) const {
   if (!active_) return Color(0.0f);
   if (!map_) return constant_;
+  if (!rgba_.empty()) return from_rgba(rgba_[texel_index(dir, map_->width(), map_->height())]);
   Vec2f uv = direction_to_uv(dir);
   int x = std::min(static_cast<int>(uv.x * map_->width()), map_->width() - 1);
   int y = std::min(static_cast<int>(uv.y * map_->height()), map_->height() - 1);
   return map_->at(std::max(x, 0), std::max(y, 0)) * scale_;
+}
+
+Color EnvironmentLight::eval_lowres(Vec3f dir) const {
+  if (lowres_.empty()) return eval(dir);
+  return from_rgba(lowres_[texel_index(dir, lowres_width_, lowres_height_)]);
 }
 
 EnvironmentSample EnvironmentLight::sample(Vec2f u) const {

@@ -3,6 +3,8 @@
 // u = (atan2(x, -z) + pi) / (2 pi), so the centre of the image is the direction -z.
 #pragma once
 
+#include <vector>
+
 #include "image/image.h"
 #include "math/vec.h"
 #include "render/sampling.h"
@@ -16,13 +18,30 @@ struct EnvironmentSample {
   float pdf = 0;  // solid angle
 };
 
+// One texel as four floats on a 16-byte boundary: a lookup is one aligned load (the fourth
+// lane is padding).
+struct alignas(16) TexelRgba {
+  float v[4];
+};
+
+struct EnvironmentOptions {
+  bool rgba_texels = true;  // look texels up in an aligned RGBA copy (else the 12-byte Image)
+  bool lowres = false;      // also build the 8x8-block-averaged map for eval_lowres()
+};
+
+// Side of the texel blocks averaged into one low-resolution texel.
+inline constexpr int kLowresBlock = 8;
+
 class EnvironmentLight {
  public:
   EnvironmentLight() = default;
-  explicit EnvironmentLight(const Environment& env);
+  explicit EnvironmentLight(const Environment& env, const EnvironmentOptions& options = {});
 
   bool active() const { return active_; }
   Color eval(Vec3f dir) const;
+  // The map averaged over 8x8 texel blocks (biased; for rays after the first bounce). Falls back
+  // to eval() when the low-resolution map was not requested.
+  Color eval_lowres(Vec3f dir) const;
   EnvironmentSample sample(Vec2f u) const;
   float pdf(Vec3f dir) const;
   // Average radiance, for the light-selection weight.
@@ -35,6 +54,9 @@ class EnvironmentLight {
   bool active_ = false;
   Color constant_{0.0f};
   const Image* map_ = nullptr;
+  std::vector<TexelRgba> rgba_;  // map_ as aligned RGBA, pre-scaled; empty when not requested
+  std::vector<TexelRgba> lowres_;
+  int lowres_width_ = 0, lowres_height_ = 0;
   float scale_ = 1.0f;
   Distribution2D distribution_;
   float mean_luminance_ = 0;

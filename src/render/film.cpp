@@ -14,7 +14,17 @@ Image Film::resolve() const {
   return out;
 }
 
+double Film::variance_of_mean(int x, int y) const {
+  size_t i = static_cast<size_t>(y) * width() + x;
+  double n = samples_[i];
+  if (n < 2) return 0.0;
+  double mean = luminance(sum_.at(x, y)) / n;
+  double variance = (luminance_sq_[i] - n * mean * mean) / (n - 1);
+  return std::max(0.0, variance) / n;
+}
+
 void Film::clear() {
+  std::fill(luminance_sq_.begin(), luminance_sq_.end(), 0.0);
   std::fill(sum_.data(), sum_.data() + sum_.pixel_count(), Color(0.0f));
   std::fill(samples_.begin(), samples_.end(), 0u);
 }

@@ -1,6 +1,9 @@
 // The one path tracer: unidirectional, next-event estimation and BSDF sampling combined with
-// multiple importance sampling (power heuristic), Russian roulette. The tile and wavefront
-// schedulers both call it; it knows the accelerator only through the Accel interface.
+// multiple importance sampling (power heuristic), Russian roulette. It is written as steps on a
+// PathState so that both schedulers drive the same code: the tile scheduler runs the steps of
+// one path back to back (radiance()), the wavefront scheduler runs each step over a whole wave
+// of paths with batched intersection between them. It knows the accelerator only through the
+// Accel interface.
 #pragma once
 
 #include <cstdint>
@@ -18,18 +21,55 @@ struct PathCounters {
   uint64_t rays = 0;             // closest-hit rays
   uint64_t shadow_rays = 0;      // any-hit rays
   uint64_t invalid_samples = 0;  // NaN/inf radiance dropped
+  // Phase clocks (steady_clock nanoseconds), only filled when quality.profile_phases is on.
+  uint64_t intersect_ns = 0;
+  uint64_t shadow_ns = 0;
+  uint64_t total_ns = 0;  // whole path work on this thread (shading = total - the two above)
+};
+
+// One path between two steps: the ray to trace next and what the path has gathered.
+struct PathState {
+  Ray ray;
+  Color L{0.0f};
+  Color beta{1.0f};
+  Vec3f previous_position;
+  float previous_pdf = 0;
+  float max_roughness = 0;  // largest roughness seen so far (path-space regularization)
+  int depth = 0;            // index of the vertex `ray` will hit (0 = camera ray)
+  bool previous_was_delta = true;
+  bool alive = true;
+};
+
+// A next-event-estimation ray; `contribution` is added to L when it is not occluded.
+struct ShadowRequest {
+  Ray ray;
+  Color contribution{0.0f};
+  bool active = false;
 };
 
 class PathIntegrator {
  public:
   PathIntegrator(const Scene& scene, const Accel& accel, const RenderSettings& settings);
 
-  // Radiance arriving along `ray` (a camera ray).
+  // Radiance arriving along `ray` (a camera ray): the steps below run back to back.
   Color radiance(Ray ray, Sampler& sampler, PathCounters& counters) const;
 
+  // The steps. start() makes the state of a camera path. shade() consumes the result of
+  // tracing state.ray (found/hit), adds emission, samples a light and the next direction:
+  // afterwards state.ray is the next ray or state.alive is false, and `shadow` says whether a
+  // shadow ray must be traced. finish() is the sample's value (clamped, NaN/inf dropped).
+  static PathState start(const Ray& camera_ray);
+  void shade(PathState& state, bool found, const Hit& hit, Sampler& sampler,
+             ShadowRequest& shadow) const;
+  Color finish(const PathState& state, PathCounters& counters) const;
+
   const LightSampler& lights() const { return lights_; }
+  const Accel& accel() const { return accel_; }
+  const RenderSettings& settings() const { return settings_; }
 
  private:
+  Color environment_radiance(Vec3f dir, int depth) const;
+
   const Scene& scene_;
   const Accel& accel_;
   RenderSettings settings_;

@@ -2,12 +2,66 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 
 namespace tuneray {
+
+namespace {
+
+uint64_t now_ns() {
+  return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                   std::chrono::steady_clock::now().time_since_epoch())
+                                   .count());
+}
+
+PassStats combine(tbb::combinable<PathCounters>& counters, double render_ms, uint64_t samples) {
+  PassStats stats;
+  stats.render_ms = render_ms;
+  stats.samples = samples;
+  uint64_t intersect = 0, shadow = 0, total = 0;
+  counters.combine_each([&](const PathCounters& c) {
+    stats.rays += c.rays;
+    stats.shadow_rays += c.shadow_rays;
+    stats.invalid_samples += c.invalid_samples;
+    intersect += c.intersect_ns;
+    shadow += c.shadow_ns;
+    total += c.total_ns;
+  });
+  stats.intersect_ms = intersect * 1e-6;
+  stats.shadow_ms = shadow * 1e-6;
+  stats.shading_ms = total > intersect + shadow ? (total - intersect - shadow) * 1e-6 : 0.0;
+  return stats;
+}
+
+// What a wavefront worker keeps between chunks: one sampler per path slot and the queues.
+struct WaveBuffers {
+  std::vector<std::unique_ptr<Sampler>> samplers;
+  std::vector<PathState> states;
+  std::vector<uint32_t> queue, next_queue;
+  std::vector<Ray> rays, shadow_rays;
+  std::vector<Hit> hits;
+  std::vector<uint32_t> shadow_owner;
+  std::vector<Color> shadow_contribution;
+  std::vector<uint8_t> occluded;
+};
+
+}  // namespace
+
+void PassStats::accumulate(const PassStats& o) {
+  render_ms += o.render_ms;
+  rays += o.rays;
+  shadow_rays += o.shadow_rays;
+  invalid_samples += o.invalid_samples;
+  samples += o.samples;
+  intersect_ms += o.intersect_ms;
+  shading_ms += o.shading_ms;
+  shadow_ms += o.shadow_ms;
+}
 
 TileRenderer::TileRenderer(const Scene& scene, const Accel& accel, const CameraDesc& camera,
                            const RenderSettings& settings, const Sampler& prototype)
@@ -24,43 +78,197 @@ int TileRenderer::tile_count() const {
 
 PassStats TileRenderer::render_pass(Film& film, uint32_t first_sample, uint32_t spp,
                                     const std::function<void()>& on_tile_done) const {
+  PixelWork work{[first_sample](size_t) { return first_sample; }, [spp](size_t) { return spp; }};
+  return run(film, work, on_tile_done);
+}
+
+PassStats TileRenderer::render_extra(Film& film, const std::vector<uint32_t>& extra) const {
+  const int w = settings_.width;
+  PixelWork work{[&film, w](size_t i) {
+                   return film.samples(static_cast<int>(i % w), static_cast<int>(i / w));
+                 },
+                 [&extra](size_t i) { return extra[i]; }};
+  // The first sample index is read before the pixel is written: each pixel has one writer.
+  return run(film, work, {});
+}
+
+PassStats TileRenderer::run(Film& film, const PixelWork& work,
+                            const std::function<void()>& on_tile_done) const {
+  if (settings_.quality.wavefront) {
+    PassStats stats = run_wavefront(film, work);
+    if (on_tile_done)
+      for (int i = 0; i < tile_count(); ++i) on_tile_done();
+    return stats;
+  }
+  return run_tiles(film, work, on_tile_done);
+}
+
+PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work,
+                                  const std::function<void()>& on_tile_done) const {
   const int ts = std::max(1, settings_.tile_size);
   const int tiles_x = (settings_.width + ts - 1) / ts;
+  const bool profile = settings_.quality.profile_phases;
   tbb::combinable<PathCounters> counters;
+  tbb::combinable<uint64_t> samples;
   auto start = std::chrono::steady_clock::now();
 
   tbb::parallel_for(
       tbb::blocked_range<int>(0, tile_count(), 1), [&](const tbb::blocked_range<int>& r) {
         std::unique_ptr<Sampler> sampler = prototype_.clone();
         PathCounters& local = counters.local();
+        uint64_t& local_samples = samples.local();
         for (int tile = r.begin(); tile != r.end(); ++tile) {
+          uint64_t t0 = profile ? now_ns() : 0;
           int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
           int x1 = std::min(x0 + ts, settings_.width), y1 = std::min(y0 + ts, settings_.height);
           for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
+              size_t pixel = static_cast<size_t>(y) * settings_.width + x;
+              uint32_t first = work.first(pixel), n = work.count(pixel);
+              if (n == 0) continue;
               Color sum(0.0f);
-              for (uint32_t s = 0; s < spp; ++s) {
+              double lum_sq = 0;
+              for (uint32_t s = 0; s < n; ++s) {
                 sampler->start_pixel_sample(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
-                                            first_sample + s);
+                                            first + s);
                 std::array<float, 4> u = sampler->next4();
                 Ray ray = camera_.generate_ray({x + u[0], y + u[1]}, {u[2], u[3]});
-                sum += integrator_.radiance(ray, *sampler, local);
+                Color L = integrator_.radiance(ray, *sampler, local);
+                sum += L;
+                lum_sq += static_cast<double>(luminance(L)) * luminance(L);
               }
-              film.add(x, y, sum, spp);
+              local_samples += n;
+              film.add(x, y, sum, n, lum_sq);
             }
+          if (profile) local.total_ns += now_ns() - t0;
           if (on_tile_done) on_tile_done();
         }
       });
 
-  PassStats stats;
-  stats.render_ms =
+  double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  counters.combine_each([&](const PathCounters& c) {
-    stats.rays += c.rays;
-    stats.shadow_rays += c.shadow_rays;
-    stats.invalid_samples += c.invalid_samples;
-  });
-  return stats;
+  return combine(counters, ms, samples.combine(std::plus<uint64_t>()));
+}
+
+PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work) const {
+  const int width = settings_.width;
+  const size_t pixel_count = static_cast<size_t>(width) * settings_.height;
+  const size_t batch = static_cast<size_t>(std::max(1, settings_.quality.batch_size));
+  const bool profile = settings_.quality.profile_phases;
+  const Accel& accel = integrator_.accel();
+
+  // Chunks of whole pixels (so each pixel has one writer and sums its samples in order) with
+  // at most `batch` paths, unless one pixel alone has more.
+  std::vector<size_t> chunk_begin{0};
+  std::vector<uint32_t> first(pixel_count), count(pixel_count);
+  uint64_t total_samples = 0;
+  for (size_t i = 0, in_chunk = 0; i < pixel_count; ++i) {
+    first[i] = work.first(i);
+    count[i] = work.count(i);
+    total_samples += count[i];
+    if (in_chunk > 0 && in_chunk + count[i] > batch) {
+      chunk_begin.push_back(i);
+      in_chunk = 0;
+    }
+    in_chunk += count[i];
+  }
+  chunk_begin.push_back(pixel_count);
+
+  tbb::combinable<PathCounters> counters;
+  tbb::enumerable_thread_specific<WaveBuffers> buffers;
+  auto start = std::chrono::steady_clock::now();
+
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, chunk_begin.size() - 1, 1),
+      [&](const tbb::blocked_range<size_t>& r) {
+        PathCounters& local = counters.local();
+        WaveBuffers& b = buffers.local();
+        for (size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
+          uint64_t t_chunk = profile ? now_ns() : 0;
+          size_t p0 = chunk_begin[chunk], p1 = chunk_begin[chunk + 1];
+          size_t paths = 0;
+          for (size_t p = p0; p < p1; ++p) paths += count[p];
+          while (b.samplers.size() < paths) b.samplers.push_back(prototype_.clone());
+          b.states.resize(paths);
+          b.queue.clear();
+
+          // Generate.
+          size_t k = 0;
+          for (size_t p = p0; p < p1; ++p) {
+            uint32_t x = static_cast<uint32_t>(p % width), y = static_cast<uint32_t>(p / width);
+            for (uint32_t s = 0; s < count[p]; ++s, ++k) {
+              Sampler& sampler = *b.samplers[k];
+              sampler.start_pixel_sample(x, y, first[p] + s);
+              std::array<float, 4> u = sampler.next4();
+              b.states[k] = PathIntegrator::start(camera_.generate_ray(
+                  {static_cast<float>(x) + u[0], static_cast<float>(y) + u[1]}, {u[2], u[3]}));
+              b.queue.push_back(static_cast<uint32_t>(k));
+            }
+          }
+
+          while (!b.queue.empty()) {
+            // Extend: one batch of closest-hit rays.
+            size_t n = b.queue.size();
+            b.rays.resize(n);
+            b.hits.resize(n);
+            for (size_t i = 0; i < n; ++i) b.rays[i] = b.states[b.queue[i]].ray;
+            uint64_t t0 = profile ? now_ns() : 0;
+            accel.intersect_batch(b.rays, b.hits);
+            if (profile) local.intersect_ns += now_ns() - t0;
+            local.rays += n;
+
+            // Shade: emission, light sample, next direction; shadow rays are collected.
+            b.shadow_rays.clear();
+            b.shadow_owner.clear();
+            b.shadow_contribution.clear();
+            b.next_queue.clear();
+            for (size_t i = 0; i < n; ++i) {
+              uint32_t q = b.queue[i];
+              ShadowRequest shadow;
+              integrator_.shade(b.states[q], b.hits[i].valid(), b.hits[i], *b.samplers[q],
+                                shadow);
+              if (shadow.active) {
+                b.shadow_rays.push_back(shadow.ray);
+                b.shadow_owner.push_back(q);
+                b.shadow_contribution.push_back(shadow.contribution);
+              }
+              if (b.states[q].alive) b.next_queue.push_back(q);  // compaction
+            }
+
+            // Connect: shadow rays as one batch.
+            if (!b.shadow_rays.empty()) {
+              b.occluded.resize(b.shadow_rays.size());
+              t0 = profile ? now_ns() : 0;
+              accel.occluded_batch(b.shadow_rays, b.occluded);
+              if (profile) local.shadow_ns += now_ns() - t0;
+              local.shadow_rays += b.shadow_rays.size();
+              for (size_t i = 0; i < b.shadow_rays.size(); ++i)
+                if (!b.occluded[i]) b.states[b.shadow_owner[i]].L += b.shadow_contribution[i];
+            }
+            std::swap(b.queue, b.next_queue);
+          }
+
+          // Accumulate each pixel's samples in index order, as the tile scheduler does.
+          k = 0;
+          for (size_t p = p0; p < p1; ++p) {
+            if (count[p] == 0) continue;
+            Color sum(0.0f);
+            double lum_sq = 0;
+            for (uint32_t s = 0; s < count[p]; ++s, ++k) {
+              Color L = integrator_.finish(b.states[k], local);
+              sum += L;
+              lum_sq += static_cast<double>(luminance(L)) * luminance(L);
+            }
+            film.add(static_cast<int>(p % width), static_cast<int>(p / width), sum, count[p],
+                     lum_sq);
+          }
+          if (profile) local.total_ns += now_ns() - t_chunk;
+        }
+      });
+
+  double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return combine(counters, ms, total_samples);
 }
 
 }  // namespace tuneray

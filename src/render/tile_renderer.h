@@ -1,9 +1,15 @@
-// Tile-parallel progressive rendering: the image is cut into square tiles that TBB spreads
-// over all cores; each call adds `spp` samples to every pixel of the film.
+// Progressive rendering with two schedulers around the one PathIntegrator:
+// - tiles: square tiles that TBB spreads over all cores, each path traced start to end;
+// - wavefront (quality.wavefront): runs of whole pixels whose paths advance together in waves
+//   (generate -> extend -> shade -> connect), rays traced in batches through the accelerator's
+//   batch entry points, shadow rays collected and traced together, the queue of live paths
+//   compacted after every bounce.
+// Both consume each pixel's samples in the same order, so they give the same image.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "accel/accel.h"
 #include "render/camera.h"
@@ -20,9 +26,13 @@ struct PassStats {
   uint64_t rays = 0;
   uint64_t shadow_rays = 0;
   uint64_t invalid_samples = 0;
+  uint64_t samples = 0;  // pixel samples taken
+  // Phase times summed over threads (ms), when quality.profile_phases is on.
+  double intersect_ms = 0, shading_ms = 0, shadow_ms = 0;
   double mrays_per_s() const {
     return render_ms > 0 ? static_cast<double>(rays + shadow_rays) / (render_ms * 1e3) : 0.0;
   }
+  void accumulate(const PassStats& other);
 };
 
 class TileRenderer {
@@ -36,6 +46,10 @@ class TileRenderer {
   PassStats render_pass(Film& film, uint32_t first_sample, uint32_t spp,
                         const std::function<void()>& on_tile_done = {}) const;
 
+  // Adds extra[y * width + x] samples to each pixel, continuing its sample indices from
+  // film.samples(x, y) (adaptive sampling).
+  PassStats render_extra(Film& film, const std::vector<uint32_t>& extra) const;
+
   // Moves the camera; lights and the integrator are kept (cheap, for camera paths).
   void set_camera(const CameraDesc& camera) {
     camera_ = Camera(camera, settings_.width, settings_.height);
@@ -43,8 +57,18 @@ class TileRenderer {
 
   int tile_count() const;
   const PathIntegrator& integrator() const { return integrator_; }
+  const RenderSettings& settings() const { return settings_; }
 
  private:
+  // Samples of pixel i: indices [first(i), first(i) + count(i)).
+  struct PixelWork {
+    std::function<uint32_t(size_t)> first, count;
+  };
+  PassStats run(Film& film, const PixelWork& work, const std::function<void()>& on_tile_done) const;
+  PassStats run_tiles(Film& film, const PixelWork& work,
+                      const std::function<void()>& on_tile_done) const;
+  PassStats run_wavefront(Film& film, const PixelWork& work) const;
+
   const Scene& scene_;
   RenderSettings settings_;
   Camera camera_;

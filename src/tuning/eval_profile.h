@@ -12,6 +12,7 @@ namespace tuneray {
 struct EvalProfile {
   std::string name;
   std::vector<std::string> scenes;  // scene specs (built-in names or files)
+  std::string scenes_dir;           // where JSON scenes find their meshes
   int cameras = 100;                // positions along each scene's camera path
   int iterations = 80;              // search frames per camera
   int width = 320, height = 180;
@@ -26,7 +27,7 @@ struct EvalProfile {
 
 // "quick": two small built-in scenes, CI-sized (minutes). "standard": every shared scene,
 // reduced cameras and iterations (about an hour on 2 cores). "paper": 100 cameras x 80
-// iterations on every shared scene. `scenes_dir` locates the shared scenes (empty: skipped).
+// iterations on every shared scene. `shared_scenes` are the scene specs of the shared scenes.
 // Throws std::invalid_argument for an unknown name.
 EvalProfile eval_profile(const std::string& name, const std::vector<std::string>& shared_scenes);
 

@@ -102,7 +102,9 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
   const tuner::IndicatorSchema schema = make_indicator_schema();
 
   for (const std::string& spec : p.scenes) {
-    Scene scene = load_scene(spec);
+    LoadOptions load_options;
+    load_options.scenes_dir = p.scenes_dir;
+    Scene scene = load_scene(spec, load_options);
     const std::string name = scene_key(spec);
     SceneData data;
     data.cameras = camera_positions(scene, 0, p.cameras);

@@ -39,7 +39,8 @@ std::string tuning_key(const TuneOptions& o) {
 }
 
 TuneReport run_tune_session(const TuneOptions& o,
-                            const std::function<void(const std::string&)>& log) {
+                            const std::function<void(const std::string&)>& log,
+                            const std::function<void(const TuneProgress&)>& on_frame) {
   if (o.iterations < 1 || o.cameras < 1 || o.spp < 1 || o.baseline_repeats < 1)
     throw std::invalid_argument("iterations, cameras, spp and repeats must be >= 1");
   if (!(o.epsilon >= 0 && o.epsilon <= 1)) throw std::invalid_argument("epsilon must be in [0, 1]");
@@ -69,10 +70,21 @@ TuneReport run_tune_session(const TuneOptions& o,
   bench.run(default_config, cameras[0]);  // warm-up: threads, caches, page faults (not counted)
 
   TuneReport report;
+  TuneProgress progress;
+  progress.frames_total = o.iterations * static_cast<int>(cameras.size());
+  auto measure_median = [&](const BvhConfig& config, const CameraDesc& camera) {
+    std::vector<double> ms;
+    for (int k = 0; k < o.baseline_repeats; ++k)
+      ms.push_back(bench.run(config, camera).cost_ms(o.objective));
+    return median(ms);
+  };
   for (size_t ci = 0; ci < cameras.size(); ++ci) {
     tuner::State state = to_tuner_state(compute_indicators(scene_indicators, cameras[ci]));
     CameraTuneResult r;
     r.camera = static_cast<int>(ci);
+    // The baseline is measured outside the tuner: it is the yardstick, not a tuning decision.
+    r.default_ms = measure_median(default_config, cameras[ci]);
+    double best_ms = r.default_ms;
     for (int it = 0; it < o.iterations; ++it) {
       tuner::Config c = tuner.suggest(state);
       if (it == 0) r.mode = tuner.mode() == tuner::TunerMode::kSearch ? "search" : "exploit";
@@ -81,21 +93,22 @@ TuneReport run_tune_session(const TuneOptions& o,
       if (cost.ok) {
         tuner.report(c, cost.cost_ms(o.objective) / 1000.0, extras);
         r.accumulated_ms += cost.cost_ms(o.objective);
+        best_ms = std::min(best_ms, cost.cost_ms(o.objective));
       } else {
         tuner.report_failure(c, extras);
         ++report.failed_builds;
       }
       ++r.frames;
+      if (on_frame) {
+        progress.camera = r.camera;
+        progress.frame = it;
+        ++progress.frames_done;
+        progress.best_speedup = best_ms > 0 ? r.default_ms / best_ms : 0.0;
+        on_frame(progress);
+      }
     }
-    // Side by side: the default and the chosen configuration, alternately, medians.
     BvhConfig chosen = to_bvh_config(tuner.best(state));
-    std::vector<double> default_ms, chosen_ms;
-    for (int k = 0; k < o.baseline_repeats; ++k) {
-      default_ms.push_back(bench.run(default_config, cameras[ci]).cost_ms(o.objective));
-      chosen_ms.push_back(bench.run(chosen, cameras[ci]).cost_ms(o.objective));
-    }
-    r.default_ms = median(default_ms);
-    r.chosen_ms = median(chosen_ms);
+    r.chosen_ms = measure_median(chosen, cameras[ci]);
     r.config = chosen.to_string();
     if (auto s = tuner.summary(state)) r.converged = s->converged;
     if (log)

@@ -48,8 +48,16 @@ struct TuneReport {
   int failed_builds = 0;
 };
 
-// Runs the loop; `log` receives one line per camera (may be empty).
+struct TuneProgress {
+  int camera = 0, frame = 0;  // of this frame
+  int frames_done = 0, frames_total = 0;
+  double best_speedup = 0;  // default cost / best cost seen so far at this camera
+};
+
+// Runs the loop; `log` receives one line per camera, `on_frame` is called after every frame
+// (both may be empty).
 TuneReport run_tune_session(const TuneOptions& options,
-                            const std::function<void(const std::string&)>& log = {});
+                            const std::function<void(const std::string&)>& log = {},
+                            const std::function<void(const TuneProgress&)>& on_frame = {});
 
 }  // namespace tuneray

@@ -1,0 +1,42 @@
+#include "app/quality_cli.h"
+
+#include <stdexcept>
+
+namespace tuneray {
+
+void add_quality_options(CLI::App* cmd, QualityCli& q) {
+  QualityOptions& o = q.options;
+  cmd->add_flag("--wavefront", o.wavefront, "Wavefront scheduler (batched rays) instead of tiles");
+  cmd->add_option("--batch-size", o.batch_size, "Paths per wavefront wave")
+      ->check(CLI::Range(1, 1 << 24))
+      ->capture_default_str();
+  cmd->add_option("--sky-texels", q.sky_texels, "Sky texel layout: rgba (16-byte) or rgb")
+      ->capture_default_str();
+  cmd->add_flag("!--no-one-texel", q.one_texel,
+                "Keep textures on triangles whose UVs fall in one texel");
+  cmd->add_flag("--lowres-sky", o.lowres_sky, "Biased: 8x8-averaged sky after the camera ray");
+  cmd->add_flag("--regularize", o.regularize,
+                "Biased: roughness never below the path's largest so far");
+  cmd->add_option("--clamp", o.clamp, "Biased: max length of a path sample's RGB (0 = off)")
+      ->check(CLI::Range(0.0f, 1e30f))
+      ->capture_default_str();
+  cmd->add_flag("--adaptive", o.adaptive,
+                "Adaptive sampling (frame-budget mode): extra samples where variance is high");
+  cmd->add_option("--adaptive-min-spp", o.adaptive_min_spp,
+                  "Uniform samples per pixel before adaptive sampling starts")
+      ->check(CLI::Range(2, 1 << 16))
+      ->capture_default_str();
+}
+
+QualityOptions resolve_quality(const QualityCli& q) {
+  QualityOptions o = q.options;
+  if (q.sky_texels == "rgba")
+    o.sky_rgba = true;
+  else if (q.sky_texels == "rgb")
+    o.sky_rgba = false;
+  else
+    throw std::invalid_argument("bad --sky-texels '" + q.sky_texels + "': expected rgba or rgb");
+  return o;
+}
+
+}  // namespace tuneray
