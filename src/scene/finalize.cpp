@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "scene/camera_spline.h"
 #include "scene/load.h"
 
 namespace tuneray {
@@ -28,23 +29,6 @@ void check_invariants(const Scene& s) {
       fail("material '" + m.name + "' refers to a missing texture");
 }
 
-CameraPath orbit_path(const BBox& box) {
-  CameraPath path{"orbit", {}};
-  const Vec3f centre = box.center();
-  const float radius = std::max(0.5f * box.diagonal(), 1e-3f);
-  const float distances[] = {3.0f, 1.5f, 4.0f, 2.0f};  // in bounding radii: far and near views
-  for (int i = 0; i < 4; ++i) {
-    float angle = kPi / 2 * i + kPi / 4;
-    Vec3f dir = normalize(Vec3f(std::cos(angle), 0.5f, std::sin(angle)));
-    CameraDesc c;
-    c.name = "orbit_" + std::to_string(i);
-    c.position = centre + dir * (radius * distances[i]);
-    c.target = centre;
-    path.keyframes.push_back(c);
-  }
-  return path;
-}
-
 }  // namespace
 
 CameraDesc frame_bounds(const BBox& box, float vfov_deg) {
@@ -67,8 +51,8 @@ void finalize_scene(Scene& scene) {
     scene.cameras.push_back(frame_bounds(box));
     scene.notes.push_back("automatic camera framing the bounding box");
     if (scene.camera_paths.empty()) {
-      scene.camera_paths.push_back(orbit_path(box));
-      scene.notes.push_back("automatic orbit camera path");
+      scene.camera_paths.push_back(automatic_camera_path(scene));
+      scene.notes.push_back("automatic camera path (far and close views around the bounds)");
     }
   }
   if (scene.emissive_triangle_count() == 0 && scene.point_lights.empty() &&

@@ -10,7 +10,7 @@ namespace tuneray {
 // right, y up), far enough that the bounding sphere fits a vertical field of view of `vfov_deg`.
 CameraDesc frame_bounds(const BBox& box, float vfov_deg = 45.0f);
 
-// Adds an automatic camera (and an orbit camera path) when the scene has none and a constant
+// Adds an automatic camera (and an automatic camera path) when the scene has none and a constant
 // sky of radiance 1 when it has no emissive triangle, point light or environment; each such
 // decision is recorded in scene.notes. Throws SceneError naming scene.source when an invariant
 // is broken (normals or uvs of the wrong size, indices or material ids out of range).
