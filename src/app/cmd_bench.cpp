@@ -3,12 +3,13 @@
 
 #include "app/bench_commands.h"
 #include "app/cmd_bench_accel.h"
+#include "app/cmd_bench_quality.h"
 #include "app/commands.h"
 
 namespace tuneray {
 
 CommandAction add_bench_command(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: render, traversal, build");
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: render, traversal, build, quality");
   bench->require_subcommand(1);
 
   auto render = std::make_shared<BenchRenderArgs>();
@@ -51,7 +52,42 @@ CommandAction add_bench_command(CLI::App& app) {
   CLI::App* b = bench->add_subcommand("build", "Build time, nodes, leaves, SAH cost and memory");
   add_accel_options(b);
 
+  auto quality = std::make_shared<BenchQualityArgs>();
+  CLI::App* q = bench->add_subcommand(
+      "quality", "RMSE vs ground truth at a frame budget: ablation of the quality techniques");
+  q->add_option("scenes", quality->scenes, "Scenes (default: every scenes/*.json)");
+  q->add_option("--size", quality->size, "Image size")->capture_default_str();
+  q->add_option("--frame-ms", quality->frame_ms, "Frame budget (ms)")
+      ->check(CLI::Range(1.0, 1e7))
+      ->capture_default_str();
+  q->add_option("--target-spp", quality->target_spp,
+                "Set the frame budget per scene to this many baseline spp (overrides --frame-ms)")
+      ->check(CLI::Range(0.0, 1e6));
+  q->add_option("--frames", quality->frames, "Frames accumulated")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  q->add_option("--max-bounces", quality->max_bounces, "Path length")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  q->add_option("--truth-dir", quality->truth_dir, "Ground-truth cache folder")
+      ->capture_default_str();
+  q->add_option("--truth-spp", quality->truth_spp, "Ground-truth samples per pixel")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  q->add_option("--bias-spp", quality->bias_spp, "Samples per pixel of the bias estimate")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  q->add_option("--clamp", quality->clamp, "Firefly clamp m for the clamp configuration")
+      ->check(CLI::Range(0.0f, 1e30f))
+      ->capture_default_str();
+  q->add_option("--only", quality->only, "Run only these configurations (baseline, ...)");
+  q->add_flag("--sweep", quality->sweep, "Also sweep tile size and wavefront batch size");
+  q->add_option("--json", quality->json, "Write results as JSON");
+  q->add_option("--plot", quality->plot, "Write PREFIX.dat and PREFIX.gp (gnuplot, RMSE vs time)");
+  q->add_option("--scenes-dir", quality->scenes_dir, "Folder of the shared scenes");
+
   return [=] {
+    if (q->parsed()) return run_bench_quality(*quality);
     if (r->parsed()) return run_bench_render(*render);
     if (t->parsed()) return run_bench_traversal(*accel);
     if (b->parsed()) return run_bench_build(*accel);

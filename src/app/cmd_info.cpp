@@ -8,6 +8,7 @@
 #include "app/commands.h"
 #include "scene/indicators.h"
 #include "scene/load.h"
+#include "scene/one_texel.h"
 #include "scene/stats.h"
 
 namespace tuneray {
@@ -34,6 +35,7 @@ int run_info(const InfoArgs& a) {
   double load_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   SceneStats s = compute_stats(scene);
+  OneTexelStats one_texel = collapse_one_texel_textures(scene, /*apply=*/false);
   Json j = {
       {"scene", a.scene},
       {"triangles", s.triangles},
@@ -54,6 +56,9 @@ int run_info(const InfoArgs& a) {
       {"camera_paths", scene.camera_paths.size()},
       {"load_ms", load_ms},
       {"memory_bytes", s.memory_bytes},
+      // Textured triangles whose UVs fall in one texel (render folds them into constant colours).
+      {"one_texel_triangles", one_texel.candidates},
+      {"one_texel_foldable", one_texel.collapsed},
       {"notes", scene.notes},
   };
   SceneIndicators scene_indicators = compute_scene_indicators(scene);

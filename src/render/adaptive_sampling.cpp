@@ -25,7 +25,8 @@ std::vector<uint32_t> allocate_adaptive_samples(const Film& film, uint64_t budge
 
   auto spent = [&](double c) {
     double total = 0;
-    for (size_t i = 0; i < n_pixels; ++i) total += std::floor(std::max(0.0, c * sigma[i] - have[i]));
+    for (size_t i = 0; i < n_pixels; ++i)
+      total += std::floor(std::max(0.0, c * sigma[i] - have[i]));
     return total;
   };
   double lo = 0, hi = 1;

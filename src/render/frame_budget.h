@@ -11,9 +11,9 @@
 namespace tuneray {
 
 struct FrameResult {
-  double ms = 0;          // wall time of the frame (rendering + adaptive bookkeeping)
-  double spp = 0;         // samples added per pixel (average over pixels when adaptive)
-  PassStats stats;        // summed over the frame's passes
+  double ms = 0;    // wall time of the frame (rendering + adaptive bookkeeping)
+  double spp = 0;   // samples added per pixel (average over pixels when adaptive)
+  PassStats stats;  // summed over the frame's passes
 };
 
 class FrameBudgetRenderer {

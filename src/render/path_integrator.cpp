@@ -65,8 +65,8 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
     : scene_(scene),
       accel_(accel),
       settings_(settings),
-      environment_(scene.environment, EnvironmentOptions{settings.quality.sky_rgba,
-                                                         settings.quality.lowres_sky}),
+      environment_(scene.environment,
+                   EnvironmentOptions{settings.quality.sky_rgba, settings.quality.lowres_sky}),
       lights_(scene, environment_) {}
 
 Color PathIntegrator::environment_radiance(Vec3f dir, int depth) const {
@@ -105,17 +105,18 @@ Color PathIntegrator::radiance(Ray ray, Sampler& sampler, PathCounters& counters
 }
 
 Color PathIntegrator::finish(const PathState& state, PathCounters& counters) const {
-  Color L = state.L;
-  if (!is_finite(L)) {
+  Color indirect = state.L;
+  if (!is_finite(indirect) || !is_finite(state.L_camera)) {
     ++counters.invalid_samples;
     return Color(0.0f);
   }
+  // Emitters seen directly are not fireflies; clamping them would darken every visible light.
   const float m = settings_.quality.clamp;
   if (m > 0) {
-    float len = length(L);
-    if (len > m) L *= m / len;
+    float len = length(indirect);
+    if (len > m) indirect *= m / len;
   }
-  return L;
+  return state.L_camera + indirect;
 }
 
 void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& sampler,
@@ -133,7 +134,7 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
         else if (settings_.strategy == LightStrategy::kMis)
           w = power_heuristic(st.previous_pdf, lights_.pdf_environment(ray.dir));
       }
-      st.L += st.beta * le * w;
+      (st.depth == 0 ? st.L_camera : st.L) += st.beta * le * w;
     }
     st.alive = false;
     return;
@@ -148,11 +149,11 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
       if (settings_.strategy == LightStrategy::kLightOnly)
         w = 0.0f;
       else if (settings_.strategy == LightStrategy::kMis)
-        w = power_heuristic(st.previous_pdf, lights_.pdf_triangle(si.prim, st.previous_position,
-                                                                   si.position,
-                                                                   si.geometric_normal));
+        w = power_heuristic(
+            st.previous_pdf,
+            lights_.pdf_triangle(si.prim, st.previous_position, si.position, si.geometric_normal));
     }
-    st.L += st.beta * le * w;
+    (st.depth == 0 ? st.L_camera : st.L) += st.beta * le * w;
   }
   if (st.depth >= settings_.max_bounces) {
     st.alive = false;

@@ -31,6 +31,7 @@ struct PathCounters {
 struct PathState {
   Ray ray;
   Color L{0.0f};
+  Color L_camera{0.0f};  // emission seen directly by the camera ray (never clamped)
   Color beta{1.0f};
   Vec3f previous_position;
   float previous_pdf = 0;
@@ -57,7 +58,8 @@ class PathIntegrator {
   // The steps. start() makes the state of a camera path. shade() consumes the result of
   // tracing state.ray (found/hit), adds emission, samples a light and the next direction:
   // afterwards state.ray is the next ray or state.alive is false, and `shadow` says whether a
-  // shadow ray must be traced. finish() is the sample's value (clamped, NaN/inf dropped).
+  // shadow ray must be traced. finish() is the sample's value: NaN/inf dropped; with the firefly
+  // clamp on, everything but what the camera sees directly is clamped.
   static PathState start(const Ray& camera_ray);
   void shade(PathState& state, bool found, const Hit& hit, Sampler& sampler,
              ShadowRequest& shadow) const;

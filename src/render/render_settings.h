@@ -14,15 +14,15 @@ enum class LightStrategy : uint8_t {
 // The equal-time quality switches (docs/quality.md). Unbiased ones change speed only; the
 // biased ones (clamp, regularize, lowres_sky) must be off for ground-truth renders.
 struct QualityOptions {
-  bool wavefront = false;      // waves of paths with batched intersection (else tiles)
-  int batch_size = 4096;       // paths per wave (a work size the tuner may pick)
-  bool sky_rgba = true;        // environment texels as aligned 16-byte RGBA (else 12-byte RGB)
-  bool lowres_sky = false;     // biased: 8x8-averaged sky for rays after the first bounce
-  bool regularize = false;     // biased: roughness never below the path's largest so far
-  float clamp = 0;             // biased: max length of a path contribution (0 = off)
-  bool adaptive = false;       // extra samples where the estimated error is highest
-  int adaptive_min_spp = 4;    // uniform samples per pixel before the variance is trusted
-  bool profile_phases = false; // time intersection / shading / shadow (costs a little)
+  bool wavefront = false;       // waves of paths with batched intersection (else tiles)
+  int batch_size = 4096;        // paths per wave (a work size the tuner may pick)
+  bool sky_rgba = true;         // environment texels as aligned 16-byte RGBA (else 12-byte RGB)
+  bool lowres_sky = false;      // biased: 8x8-averaged sky for rays after the first bounce
+  bool regularize = false;      // biased: roughness never below the path's largest so far
+  float clamp = 0;              // biased: max length of a path contribution (0 = off)
+  bool adaptive = false;        // extra samples where the estimated error is highest
+  int adaptive_min_spp = 4;     // uniform samples per pixel before the variance is trusted
+  bool profile_phases = false;  // time intersection / shading / shadow (costs a little)
 
   bool biased() const { return lowres_sky || regularize || clamp > 0; }
 };

@@ -225,8 +225,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work) const {
             for (size_t i = 0; i < n; ++i) {
               uint32_t q = b.queue[i];
               ShadowRequest shadow;
-              integrator_.shade(b.states[q], b.hits[i].valid(), b.hits[i], *b.samplers[q],
-                                shadow);
+              integrator_.shade(b.states[q], b.hits[i].valid(), b.hits[i], *b.samplers[q], shadow);
               if (shadow.active) {
                 b.shadow_rays.push_back(shadow.ray);
                 b.shadow_owner.push_back(q);

@@ -48,8 +48,8 @@ OneTexelStats collapse_one_texel_textures(Scene& scene, bool apply) {
       Vec2f uv = scene.uvs[scene.triangles[t].v[k]];
       u[k] = uv.x * img.width();
       v[k] = uv.y * img.height();
-      finite = finite && std::isfinite(u[k]) && std::isfinite(v[k]) &&
-               std::abs(u[k]) < 1e8f && std::abs(v[k]) < 1e8f;
+      finite = finite && std::isfinite(u[k]) && std::isfinite(v[k]) && std::abs(u[k]) < 1e8f &&
+               std::abs(v[k]) < 1e8f;
     }
     if (!finite) continue;
     auto same = [](const float* a) {

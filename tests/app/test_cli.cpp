@@ -89,6 +89,24 @@ TEST_F(Cli, BadOptionValuesAreRejected) {
                        "x.bmp");
 }
 
+TEST_F(Cli, FrameBudgetRenderReportsEveryFrame) {
+  std::string exr = (dir_ / "f.exr").string(), report = (dir_ / "f.json").string();
+  CommandResult r = run_tuneray({"render", "cornell", "--size", "16x12", "--frame-ms", "5",
+                                 "--frames", "3", "--wavefront", "--clamp", "4", "--adaptive",
+                                 "--out", exr, "--report", report, "--quiet"});
+  ASSERT_FALSE(r.signaled) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream f(report);
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"frames\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"frame\": 2"), std::string::npos) << text;
+}
+
+TEST_F(Cli, BadQualityOptionsAreRejected) {
+  expect_clean_failure(run_tuneray({"render", "cornell", "--sky-texels", "rgbx"}), "rgbx");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--adaptive", "--quiet"}), "frame-ms");
+}
+
 TEST_F(Cli, UnknownCommandFails) {
   CommandResult r = run_tuneray({"frobnicate"});
   EXPECT_FALSE(r.signaled);
