@@ -172,15 +172,14 @@ void write_plots(const EvalResults& r, const std::vector<EvalSummary>& summaries
             obj +
             ".dat' using 1:($3==1?$2:1/0) title 'NN' pt 7 ps 0.6, "
             "'' using 1:($3==2?$2:1/0) title 'RBF' pt 5 ps 0.6\n");
+    // Break-even frames span orders of magnitude: quarter-decade bins on a log axis.
     write_plot(dir, "break_even_" + obj,
                "set title 'Break-even frame: when search pays for its exploration (" + obj +
-                   ")'\nset xlabel 'frame'\nset ylabel 'count'\nset style fill solid 0.5\n"
-                   "set boxwidth 4\nbin(x) = 10*floor(x/10) + 5\nset grid y\n"
-                   "plot 'break_even_" +
-                   obj +
-                   ".dat' using (bin($1)-2):($2==1?1:0) smooth "
-                   "frequency with boxes title 'NN', '' using (bin($1)+2):($2==2?1:0) smooth "
-                   "frequency with boxes title 'RBF'\n");
+                   "; never-cases not shown)'\nset xlabel 'frame'\nset ylabel 'count'\n"
+                   "set logscale x\nset grid y\nbin(x) = 10**(0.25*floor(4*log10(x)))\n"
+                   "plot 'break_even_" + obj + ".dat' using (bin($1)):($2==1?1:0) smooth "
+                   "frequency with impulses lw 8 title 'NN', '' using (bin($1)*1.12):($2==2?1:0) "
+                   "smooth frequency with impulses lw 8 title 'RBF'\n");
   }
 }
 
