@@ -12,6 +12,10 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
       ->capture_default_str();
   cmd->add_option("--sky-texels", q.sky_texels, "Sky texel layout: rgba (16-byte) or rgb")
       ->capture_default_str();
+  cmd->add_option("--sampler", q.sampler,
+                  "Sample generator: pcg (white noise) or bluenoise (blue-noise screen-space "
+                  "error up to 16 dimensions and 256 spp)")
+      ->capture_default_str();
   cmd->add_flag("!--no-one-texel", q.one_texel,
                 "Keep textures on triangles whose UVs fall in one texel");
   cmd->add_flag("--lowres-sky", o.lowres_sky, "Biased: 8x8-averaged sky after the camera ray");
@@ -36,6 +40,12 @@ QualityOptions resolve_quality(const QualityCli& q) {
     o.sky_rgba = false;
   else
     throw std::invalid_argument("bad --sky-texels '" + q.sky_texels + "': expected rgba or rgb");
+  if (q.sampler == "pcg")
+    o.sampler = SamplerKind::kPcg;
+  else if (q.sampler == "bluenoise")
+    o.sampler = SamplerKind::kBlueNoise;
+  else
+    throw std::invalid_argument("bad --sampler '" + q.sampler + "': expected pcg or bluenoise");
   return o;
 }
 

@@ -11,6 +11,7 @@ namespace tuneray {
 struct QualityCli {
   QualityOptions options;
   std::string sky_texels = "rgba";
+  std::string sampler = "pcg";
   bool one_texel = true;  // collapse one-texel textures at load time
 };
 

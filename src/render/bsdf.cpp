@@ -245,6 +245,61 @@ bool bsdf_sample(const BsdfParams& p, Vec3f wo, float u_lobe, Vec2f u, BsdfSampl
   return false;
 }
 
+BsdfEval bsdf_evaluate(const BsdfParams& p, Vec3f wo, Vec3f wi) {
+  // Lobe weights from the type: Lambert = diffuse only, glossy = GGX only (F0 = Ks, sampled
+  // always), principled = diffuse under a GGX coat when max(Ks) > 0, else exactly Lambert.
+  const bool lambert = p.type == MaterialType::kLambert;
+  const bool glossy = p.type == MaterialType::kGlossy;
+  const bool principled = p.type == MaterialType::kPrincipled;
+  const bool valid = (lambert | glossy | principled) & (wo.z > 0) & (wi.z > 0);
+  // Invalid inputs get harmless stand-ins so nothing below produces inf/NaN; the result is
+  // zeroed at the end.
+  const Vec3f o = valid ? wo : Vec3f(0, 0, 1);
+  const Vec3f i = valid ? wi : Vec3f(0, 0, 1);
+
+  const float f0_max = std::clamp(max_component(p.specular_color), 0.0f, 1.0f);
+  const bool coat = principled & (f0_max > 0);
+  const float transmitted_o = coat ? 1.0f - schlick_weight(o.z) : 1.0f;
+  const float diffuse_o = coat ? (21.0f / 20.0f) * (1.0f - f0_max) * transmitted_o : 1.0f;
+  const float diffuse_i = coat ? 1.0f - schlick_weight(i.z) : 1.0f;
+  const float spec_albedo = coat ? 1.0f - (1.0f - f0_max) * transmitted_o : 0.0f;
+  const float total =
+      spec_albedo + std::max(0.0f, max_component(p.base_color)) * (1.0f - spec_albedo);
+  const float coat_probability = total > 0 ? spec_albedo / total : 0.0f;
+  const float spec_probability = glossy ? 1.0f : coat_probability;
+  const float diffuse_weight = glossy ? 0.0f : kInvPi * diffuse_o * diffuse_i;
+  const bool has_spec = glossy | coat;
+
+  // GGX reflection, as ggx_reflection() with D and the Lambdas inlined.
+  const float ax = clamp_alpha(p.alpha_x), ay = clamp_alpha(p.alpha_y);
+  Vec3f h = o + i;
+  h = h / length(h);  // > 0: both on the upper hemisphere
+  const float hx = h.x / ax, hy = h.y / ay;
+  const float s = hx * hx + hy * hy + h.z * h.z;
+  const float d = 1.0f / (kPi * ax * ay * s * s);
+  const float ax2 = ax * ax, ay2 = ay * ay;
+  const float lambda_o =
+      0.5f * (std::sqrt(1.0f + (ax2 * o.x * o.x + ay2 * o.y * o.y) / (o.z * o.z)) - 1.0f);
+  const float lambda_i =
+      0.5f * (std::sqrt(1.0f + (ax2 * i.x * i.x + ay2 * i.y * i.y) / (i.z * i.z)) - 1.0f);
+  const float pdf_spec = d / ((1.0f + lambda_o) * 4.0f * o.z);
+  const float g2 = 1.0f / (1.0f + lambda_o + lambda_i);
+  const Color fresnel =
+      p.specular_color + (Color(1.0f) - p.specular_color) * schlick_weight(dot(o, h));
+  const Color f_spec = fresnel * (d * g2 / (4.0f * o.z * i.z));
+
+  BsdfEval e;
+  // Selects, not products with 0: at grazing angles the unused GGX terms may be inf/NaN.
+  const Color f_diffuse = p.base_color * diffuse_weight;
+  const float pdf_diffuse = i.z * kInvPi;
+  e.f = has_spec ? f_diffuse + f_spec : f_diffuse;
+  e.pdf = has_spec ? spec_probability * pdf_spec + (1.0f - spec_probability) * pdf_diffuse
+                   : pdf_diffuse;
+  e.f = valid ? e.f : Color(0.0f);
+  e.pdf = valid ? e.pdf : 0.0f;
+  return e;
+}
+
 bool bsdf_has_smooth_lobe(const BsdfParams& p) {
   return p.type == MaterialType::kLambert || p.type == MaterialType::kGlossy ||
          p.type == MaterialType::kPrincipled;

@@ -33,6 +33,21 @@ float bsdf_pdf(const BsdfParams& p, Vec3f wo, Vec3f wi);
 // sample exists (e.g. below the horizon); then the path ends.
 bool bsdf_sample(const BsdfParams& p, Vec3f wo, float u_lobe, Vec2f u, BsdfSample& out);
 
+// f (without the cosine) and the solid-angle pdf of sampling wi, together.
+struct BsdfEval {
+  Color f{0.0f};
+  float pdf = 0;
+};
+// The same values as bsdf_eval and bsdf_pdf (to float rounding), computed in one straight-line
+// pass: Lambert, glossy and principled are one diffuse + GGX formula whose lobe weights are
+// selected by the type, so the shared terms (half vector, Schlick weights, Smith Lambdas) are
+// computed once and there are no type branches (docs/quality.md, technique 4).
+BsdfEval bsdf_evaluate(const BsdfParams& p, Vec3f wo, Vec3f wi);
+// The per-type reference for bsdf_evaluate: bsdf_eval and bsdf_pdf called one after the other.
+inline BsdfEval bsdf_evaluate_by_type(const BsdfParams& p, Vec3f wo, Vec3f wi) {
+  return {bsdf_eval(p, wo, wi), bsdf_pdf(p, wo, wi)};
+}
+
 // True if the BSDF has any non-delta component (next-event estimation is worth doing).
 bool bsdf_has_smooth_lobe(const BsdfParams& p);
 

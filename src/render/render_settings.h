@@ -11,6 +11,12 @@ enum class LightStrategy : uint8_t {
   kBsdfOnly,   // BSDF sampling only (point lights are then invisible)
 };
 
+// Which sample generator a render uses (render/blue_noise_sampler.h: make_sampler).
+enum class SamplerKind : uint8_t {
+  kPcg,        // independent PCG32 numbers per pixel sample (the default)
+  kBlueNoise,  // scrambled (0,2)-sequences with blue-noise per-pixel keys; PCG past the tables
+};
+
 // The equal-time quality switches (docs/quality.md). Unbiased ones change speed only; the
 // biased ones (clamp, regularize, lowres_sky) must be off for ground-truth renders.
 struct QualityOptions {
@@ -23,6 +29,7 @@ struct QualityOptions {
   bool adaptive = false;        // extra samples where the estimated error is highest
   int adaptive_min_spp = 4;     // uniform samples per pixel before the variance is trusted
   bool profile_phases = false;  // time intersection / shading / shadow (costs a little)
+  SamplerKind sampler = SamplerKind::kPcg;  // unbiased either way
 
   bool biased() const { return lowres_sky || regularize || clamp > 0; }
 };
