@@ -15,6 +15,7 @@
 #include "app/progress.h"
 #include "app/quality_cli.h"
 #include "image/io.h"
+#include "render/blue_noise_sampler.h"
 #include "render/film.h"
 #include "render/frame_budget.h"
 #include "render/tile_renderer.h"
@@ -110,8 +111,8 @@ int run_render(const RenderArgs& a) {
                         scene.triangles.size()};
   BuildStats build = accel->build(geometry);
 
-  PcgSampler sampler(a.seed);
-  TileRenderer renderer(scene, *accel, scene.cameras[a.camera], settings, sampler);
+  std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, a.seed);
+  TileRenderer renderer(scene, *accel, scene.cameras[a.camera], settings, *sampler);
   Film film(width, height);
   ProgressBar progress("render", static_cast<uint64_t>(renderer.tile_count()) * a.spp,
                        !a.quiet && a.frame_ms <= 0 && stderr_is_terminal());

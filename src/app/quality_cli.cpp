@@ -16,6 +16,8 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
                   "Sample generator: pcg (white noise) or bluenoise (blue-noise screen-space "
                   "error up to 16 dimensions and 256 spp)")
       ->capture_default_str();
+  cmd->add_flag("--branchless-materials", o.branchless_materials,
+                "Material f and pdf in one straight-line pass instead of a per-type switch");
   cmd->add_flag("!--no-one-texel", q.one_texel,
                 "Keep textures on triangles whose UVs fall in one texel");
   cmd->add_flag("--lowres-sky", o.lowres_sky, "Biased: 8x8-averaged sky after the camera ray");

@@ -176,7 +176,9 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
       ls.radiance = environment_.eval_lowres(ls.wi);
     if (ls.pdf > 0 && max_component(ls.radiance) > 0 && (!opaque || dot(ls.wi, ng) > 0)) {
       Vec3f wi = frame.to_local(ls.wi);
-      Color f = bsdf_eval(bsdf, wo, wi);
+      BsdfEval e = settings_.quality.branchless_materials ? bsdf_evaluate(bsdf, wo, wi)
+                                                          : bsdf_evaluate_by_type(bsdf, wo, wi);
+      const Color& f = e.f;
       if (max_component(f) > 0) {
         shadow.ray = Ray{};
         shadow.ray.org = offset_ray_origin(si.position, ng, ls.wi);
@@ -184,7 +186,7 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
         shadow.ray.tfar = ls.distance < kInf ? ls.distance * (1.0f - 1e-4f) : kInf;
         float w = 1.0f;
         if (!ls.is_delta && settings_.strategy == LightStrategy::kMis)
-          w = power_heuristic(ls.pdf, bsdf_pdf(bsdf, wo, wi));
+          w = power_heuristic(ls.pdf, e.pdf);
         shadow.contribution = st.beta * f * ls.radiance * (std::abs(wi.z) * w / ls.pdf);
         shadow.active = true;
       }

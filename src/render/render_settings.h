@@ -30,6 +30,7 @@ struct QualityOptions {
   int adaptive_min_spp = 4;     // uniform samples per pixel before the variance is trusted
   bool profile_phases = false;  // time intersection / shading / shadow (costs a little)
   SamplerKind sampler = SamplerKind::kPcg;  // unbiased either way
+  bool branchless_materials = false;        // f and pdf in one straight-line pass (bsdf_evaluate)
 
   bool biased() const { return lowres_sky || regularize || clamp > 0; }
 };

@@ -155,12 +155,16 @@ void write_plots(const EvalResults& r, const std::vector<EvalSummary>& summaries
 
     auto roof = open_out(dir / ("roofline_" + obj + ".dat"));
     auto be = open_out(dir / ("break_even_" + obj + ".dat"));
+    int finite_break_evens = 0;
     for (const PredictionRecord& pr : r.predictions) {
       if (pr.objective != obj) continue;
       int k = pr.predictor == "nn" ? 1 : 2;
       roof << pr.camera + (k == 1 ? 0.0 : 0.3) + 100 * (scene_index(pr.scene) - 1) << ' '
            << num(pr.roofline) << ' ' << k << '\n';
-      if (std::isfinite(pr.break_even)) be << pr.break_even << ' ' << k << '\n';
+      if (std::isfinite(pr.break_even)) {
+        be << pr.break_even << ' ' << k << '\n';
+        ++finite_break_evens;
+      }
     }
     write_plot(
         dir, "roofline_" + obj,
@@ -172,14 +176,26 @@ void write_plots(const EvalResults& r, const std::vector<EvalSummary>& summaries
             obj +
             ".dat' using 1:($3==1?$2:1/0) title 'NN' pt 7 ps 0.6, "
             "'' using 1:($3==2?$2:1/0) title 'RBF' pt 5 ps 0.6\n");
-    // Break-even frames span orders of magnitude: quarter-decade bins on a log axis.
+    // Break-even frames span orders of magnitude: quarter-decade bins on a log axis. With no
+    // finite break-even at all there is nothing to bin (gnuplot would refuse the empty log
+    // axis): the plot says so instead.
+    const std::string be_title =
+        "set title 'Break-even frame: when search pays for its exploration (" + obj +
+        "; never-cases not shown)'\nset xlabel 'frame'\n"
+        "set ylabel 'count'\nset grid y\n";
     write_plot(dir, "break_even_" + obj,
-               "set title 'Break-even frame: when search pays for its exploration (" + obj +
-                   "; never-cases not shown)'\nset xlabel 'frame'\nset ylabel 'count'\n"
-                   "set logscale x\nset grid y\nbin(x) = 10**(0.25*floor(4*log10(x)))\n"
-                   "plot 'break_even_" + obj + ".dat' using (bin($1)):($2==1?1:0) smooth "
-                   "frequency with impulses lw 8 title 'NN', '' using (bin($1)*1.12):($2==2?1:0) "
-                   "smooth frequency with impulses lw 8 title 'RBF'\n");
+               finite_break_evens == 0
+                   ? be_title +
+                         "set label 'the search never paid off: every prediction was at least as "
+                         "fast as its result' at graph 0.5,0.5 center\n"
+                         "set xrange [1:100]\nset yrange [0:1]\nplot NaN notitle\n"
+                   : be_title +
+                         "set logscale x\nbin(x) = 10**(0.25*floor(4*log10(x)))\n"
+                         "plot 'break_even_" +
+                         obj +
+                         ".dat' using (bin($1)):($2==1?1:0) smooth frequency with impulses lw 8 "
+                         "title 'NN', '' using (bin($1)*1.12):($2==2?1:0) smooth frequency with "
+                         "impulses lw 8 title 'RBF'\n");
   }
 }
 
