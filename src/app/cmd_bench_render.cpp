@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #include "accel/factory.h"
 #include "app/bench_commands.h"
@@ -84,11 +84,13 @@ EmbreeReference run_embree_pathtracer(int width, int height, int spp, int max_pa
   std::array<char, 512> buf;
   while (fgets(buf.data(), buf.size(), pipe)) output += buf.data();
   int status = pclose(pipe);
-  std::smatch m;
-  if (std::regex_search(output, m, std::regex(R"(BENCHMARK_RENDER_AVG ([0-9.eE+-]+))")))
-    ref.fps = std::stod(m[1]);
-  if (std::regex_search(output, m, std::regex(R"(BENCHMARK_RENDER_MRAYPS_AVG ([0-9.eE+-]+))")))
-    ref.mrays = std::stod(m[1]);
+  // The lines look like "BENCHMARK_RENDER_AVG 1.0220".
+  auto read_value = [&output](const std::string& key) {
+    size_t at = output.find(key + " ");
+    return at == std::string::npos ? 0.0 : std::atof(output.c_str() + at + key.size() + 1);
+  };
+  ref.fps = read_value("BENCHMARK_RENDER_AVG");
+  ref.mrays = read_value("BENCHMARK_RENDER_MRAYPS_AVG");
   ref.ok = status == 0 && ref.fps > 0;
   if (!ref.ok) ref.error = "pathtracer failed: " + output.substr(0, 300);
   return ref;
