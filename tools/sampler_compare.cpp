@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "accel/embree_native.h"
+#include "image/metrics.h"
 #include "render/blue_noise_sampler.h"
 #include "render/film.h"
 #include "render/tile_renderer.h"
@@ -27,13 +28,7 @@ struct Options {
 };
 
 double rmse(const Image& a, const Image& b) {
-  double sum = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      Color d = a.at(x, y) - b.at(x, y);
-      sum += d.x * d.x + d.y * d.y + d.z * d.z;
-    }
-  return std::sqrt(sum / (3.0 * a.width() * a.height()));
+  return compare_images(a, b).rmse;
 }
 
 // RMSE of the error after a 3x3 box filter (wrapping at the borders): how large the error

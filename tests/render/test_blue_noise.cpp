@@ -7,12 +7,14 @@
 #include <numbers>
 
 #include "accel/embree_native.h"
+#include "image/metrics.h"
 #include "math/rng.h"
 #include "render/blue_noise.h"
 #include "render/blue_noise_error.h"
 #include "render/blue_noise_sampler.h"
 #include "render/film.h"
 #include "render/tile_renderer.h"
+#include "render_helpers.h"
 #include "scene/load.h"
 
 namespace tuneray {
@@ -123,23 +125,11 @@ TEST(BlueNoise, TablesRejectBadOrigins) {
 }
 
 Image render(const Scene& scene, const RenderSettings& s, const Sampler& sampler, uint32_t spp) {
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
-  TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
-  Film film(s.width, s.height);
-  renderer.render_pass(film, 0, spp);
-  return film.resolve();
+  return testing::render_image(scene, s, sampler, spp);
 }
 
 double rmse(const Image& a, const Image& b) {
-  double sum = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      Color d = a.at(x, y) - b.at(x, y);
-      sum += d.x * d.x + d.y * d.y + d.z * d.z;
-    }
-  return std::sqrt(sum / (3.0 * a.width() * a.height()));
+  return compare_images(a, b).rmse;
 }
 
 // Unbiased: the blue-noise image is as close to a PCG image as another PCG image is (two

@@ -9,6 +9,7 @@
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/tile_renderer.h"
+#include "render_helpers.h"
 #include "scene/load.h"
 
 namespace tuneray {
@@ -20,15 +21,8 @@ struct Rendered {
 };
 
 Rendered render(const Scene& scene, RenderSettings settings, uint32_t spp) {
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
-  PcgSampler sampler(settings.seed);
-  TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, sampler);
-  Film film(settings.width, settings.height);
   Rendered r;
-  r.stats = renderer.render_pass(film, 0, spp);
-  r.image = film.resolve();
+  r.image = testing::render_image(scene, settings, spp, &r.stats);
   return r;
 }
 

@@ -10,20 +10,14 @@
 #include "render/film.h"
 #include "render/frame_budget.h"
 #include "render/tile_renderer.h"
+#include "render_helpers.h"
 #include "scene/load.h"
 
 namespace tuneray {
 namespace {
 
 Image render(const Scene& scene, const RenderSettings& settings, uint32_t spp) {
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
-  PcgSampler sampler(settings.seed);
-  TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, sampler);
-  Film film(settings.width, settings.height);
-  renderer.render_pass(film, 0, spp);
-  return film.resolve();
+  return testing::render_image(scene, settings, spp);
 }
 
 RenderSettings small_settings() {

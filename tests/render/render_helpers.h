@@ -1,0 +1,31 @@
+// Shared by the render tests: one frame of `spp` samples per pixel on Embree's native BVH.
+#pragma once
+
+#include "accel/embree_native.h"
+#include "image/image.h"
+#include "render/film.h"
+#include "render/sampler.h"
+#include "render/tile_renderer.h"
+#include "scene/scene.h"
+
+namespace tuneray::testing {
+
+inline Image render_image(const Scene& scene, const RenderSettings& settings,
+                          const Sampler& sampler, uint32_t spp, PassStats* stats = nullptr) {
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, sampler);
+  Film film(settings.width, settings.height);
+  PassStats pass = renderer.render_pass(film, 0, spp);
+  if (stats) *stats = pass;
+  return film.resolve();
+}
+
+// The PCG sampler seeded from the settings, as `tuneray render` uses it.
+inline Image render_image(const Scene& scene, const RenderSettings& settings, uint32_t spp,
+                          PassStats* stats = nullptr) {
+  return render_image(scene, settings, PcgSampler(settings.seed), spp, stats);
+}
+
+}  // namespace tuneray::testing
