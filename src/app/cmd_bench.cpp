@@ -77,10 +77,22 @@ CommandAction add_bench_command(CLI::App& app) {
   q->add_option("--bias-spp", quality->bias_spp, "Samples per pixel of the bias estimate")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
-  q->add_option("--clamp", quality->clamp, "Firefly clamp m for the clamp configuration")
+  q->add_option("--truth-until-rmse", quality->truth_until_rmse,
+                "Stop the ground truth early once its estimated RMSE is below this (0 = off)")
+      ->check(CLI::Range(0.0, 1e30));
+  q->add_option("--clamp", quality->clamp,
+                "Absolute firefly clamp m for the clamp rows (0 = use --clamp-rel)")
       ->check(CLI::Range(0.0f, 1e30f))
       ->capture_default_str();
-  q->add_option("--only", quality->only, "Run only these configurations (baseline, ...)");
+  q->add_option("--clamp-rel", quality->clamp_relative,
+                "Relative firefly clamp for the clamp rows: m = this x the image's mean pixel "
+                "length")
+      ->check(CLI::Range(0.0f, 1e30f))
+      ->capture_default_str();
+  std::string names;
+  for (const std::string& n : bench_quality_configurations())
+    names += (names.empty() ? "" : ", ") + n;
+  q->add_option("--only", quality->only, "Run only these configurations: " + names);
   q->add_flag("--sweep", quality->sweep, "Also sweep tile size and wavefront batch size");
   q->add_option("--json", quality->json, "Write results as JSON");
   q->add_option("--plot", quality->plot, "Write PREFIX.dat and PREFIX.gp (gnuplot, RMSE vs time)");

@@ -16,6 +16,7 @@
 #include "app/ground_truth.h"
 #include "app/scene_paths.h"
 #include "image/metrics.h"
+#include "render/blue_noise_sampler.h"
 #include "render/film.h"
 #include "render/frame_budget.h"
 #include "render/tile_renderer.h"
@@ -26,35 +27,63 @@ namespace tuneray {
 
 namespace {
 
-struct Config {
-  std::string name;
-  std::function<void(QualityOptions&, bool& one_texel, float clamp)> apply;
+// What a row switches on: the render options plus the load-time one-texel folding.
+struct Switches {
+  QualityOptions quality;
+  bool one_texel = false;
 };
 
-// The baseline has every switch off (12-byte sky texels, textures kept); each row switches one
-// technique on; "all" switches every one on.
-std::vector<Config> configurations() {
-  auto set_all = [](QualityOptions& o, bool& one_texel, float clamp) {
-    o.wavefront = o.sky_rgba = o.lowres_sky = o.regularize = o.adaptive = true;
-    o.clamp = clamp;
-    one_texel = true;
+struct Config {
+  std::string name;
+  std::function<void(Switches&, const BenchQualityArgs&)> apply;
+};
+
+void set_clamp(QualityOptions& o, const BenchQualityArgs& a) {
+  o.clamp = a.clamp;
+  o.clamp_relative = a.clamp > 0 ? 0.0f : a.clamp_relative;
+}
+
+void set_unbiased(Switches& s) {
+  QualityOptions& o = s.quality;
+  o.wavefront = o.sky_rgba = o.branchless_materials = o.adaptive = true;
+  o.sampler = SamplerKind::kBlueNoise;
+  s.one_texel = true;
+}
+
+// The baseline has every switch off (tiles, 12-byte sky texels, textures kept, per-type
+// material evaluation, PCG numbers, uniform sampling); each row switches one technique on;
+// "unbiased" switches on every technique that leaves the expected image alone, "all" every one.
+const std::vector<Config>& configurations() {
+  static const std::vector<Config> configs = {
+      {"baseline", [](Switches&, const BenchQualityArgs&) {}},
+      {"wavefront", [](Switches& s, const BenchQualityArgs&) { s.quality.wavefront = true; }},
+      {"sky-rgba", [](Switches& s, const BenchQualityArgs&) { s.quality.sky_rgba = true; }},
+      {"one-texel", [](Switches& s, const BenchQualityArgs&) { s.one_texel = true; }},
+      {"branchless",
+       [](Switches& s, const BenchQualityArgs&) { s.quality.branchless_materials = true; }},
+      {"bluenoise",
+       [](Switches& s, const BenchQualityArgs&) { s.quality.sampler = SamplerKind::kBlueNoise; }},
+      {"adaptive", [](Switches& s, const BenchQualityArgs&) { s.quality.adaptive = true; }},
+      {"lowres-sky", [](Switches& s, const BenchQualityArgs&) { s.quality.lowres_sky = true; }},
+      {"regularize", [](Switches& s, const BenchQualityArgs&) { s.quality.regularize = true; }},
+      {"clamp", [](Switches& s, const BenchQualityArgs& a) { set_clamp(s.quality, a); }},
+      {"unbiased", [](Switches& s, const BenchQualityArgs&) { set_unbiased(s); }},
+      {"all",
+       [](Switches& s, const BenchQualityArgs& a) {
+         set_unbiased(s);
+         s.quality.lowres_sky = s.quality.regularize = true;
+         set_clamp(s.quality, a);
+       }},
   };
-  return {
-      {"baseline", [](QualityOptions&, bool&, float) {}},
-      {"wavefront", [](QualityOptions& o, bool&, float) { o.wavefront = true; }},
-      {"sky-rgba", [](QualityOptions& o, bool&, float) { o.sky_rgba = true; }},
-      {"one-texel", [](QualityOptions&, bool& t, float) { t = true; }},
-      {"lowres-sky", [](QualityOptions& o, bool&, float) { o.lowres_sky = true; }},
-      {"regularize", [](QualityOptions& o, bool&, float) { o.regularize = true; }},
-      {"clamp", [](QualityOptions& o, bool&, float m) { o.clamp = m; }},
-      {"adaptive", [](QualityOptions& o, bool&, float) { o.adaptive = true; }},
-      {"all", set_all},
-  };
+  return configs;
 }
 
 QualityOptions baseline_options() {
   QualityOptions o;
+  o.wavefront = o.adaptive = o.branchless_materials = false;
+  o.sampler = SamplerKind::kPcg;
   o.sky_rgba = false;
+  o = o.without_bias();
   return o;
 }
 
@@ -70,13 +99,39 @@ double rmse(const Image& a, const Image& b) {
   return compare_images(a, b).rmse;
 }
 
+// `spp` samples per pixel with the sampler the settings name: one sample first, then the rest,
+// so a relative clamp has an image to be relative to (as in a frame-budget render).
 Image render_fixed(const Scene& scene, const Accel& accel, const CameraDesc& camera,
                    const RenderSettings& settings, uint64_t seed, int spp) {
-  PcgSampler sampler(seed);
-  TileRenderer renderer(scene, accel, camera, settings, sampler);
+  std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, seed);
+  TileRenderer renderer(scene, accel, camera, settings, *sampler);
   Film film(settings.width, settings.height);
-  renderer.render_pass(film, 0, static_cast<uint32_t>(spp));
+  renderer.render_pass(film, 0, 1);
+  if (spp > 1) renderer.render_pass(film, 1, static_cast<uint32_t>(spp - 1));
   return film.resolve();
+}
+
+// Median ms per spp of three 2-spp passes, after a 1-spp warm-up pass.
+double measure_ms_per_spp(const Scene& scene, const Accel& accel, const CameraDesc& camera,
+                          const RenderSettings& settings) {
+  std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, 4);
+  TileRenderer renderer(scene, accel, camera, settings, *sampler);
+  Film film(settings.width, settings.height);
+  renderer.render_pass(film, 0, 1);
+  std::vector<double> ms;
+  for (uint32_t r = 0; r < 3; ++r)
+    ms.push_back(renderer.render_pass(film, 1 + 2 * r, 2).render_ms / 2);
+  std::sort(ms.begin(), ms.end());
+  return ms[1];
+}
+
+void print_row(const ConfigResult& r, double base_rmse) {
+  std::string ratio = base_rmse > 0 ? fmt::format("{:.3f}", r.rmse.back() / base_rmse) : "-";
+  fmt::print(
+      "{:<11} {:>8.2f} {:>7.2f} {:>7.2f} {:>7.2f} {:>7.2f} {:>8.1f} {:>9.5f} {:>7} {:>8.5f}\n",
+      r.name, r.ms_per_spp, r.intersect, r.shading, r.shadow, r.mrays_per_s, r.spp.back(),
+      r.rmse.back(), ratio, r.bias);
+  std::fflush(stdout);
 }
 
 nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& spec,
@@ -92,42 +147,49 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
                 scene.triangles.size()});
   const CameraDesc& camera = scene.cameras.at(0);
 
-  GroundTruthKey key{spec, camera, width, height, a.max_bounces, a.truth_spp};
-  bool rendered = false;
-  Image truth = ground_truth(a.truth_dir, key, scene, *accel, &rendered);
-  fmt::print("{}: {} triangles, one-texel {} of {} candidates, truth {} ({})\n", scene.name,
-             scene.triangles.size(), texel_stats.collapsed, texel_stats.candidates,
-             ground_truth_path(a.truth_dir, key), rendered ? "rendered" : "cached");
+  GroundTruthKey key{spec, camera, width, height, a.max_bounces, a.truth_spp, a.truth_until_rmse};
+  const std::string truth_path = ground_truth_path(a.truth_dir, key);
+  fmt::print("{}: {} triangles, one-texel {} of {} candidates\n", scene.name,
+             scene.triangles.size(), texel_stats.collapsed, texel_stats.candidates);
+  std::fflush(stdout);
+  GroundTruthInfo truth_info;
+  Image truth = ground_truth(a.truth_dir, key, scene, *accel, &truth_info);
+  if (truth_info.rendered)
+    fmt::print("truth {} (rendered: {} spp in {:.1f} s, estimated RMSE {:.5f})\n", truth_path,
+               truth_info.spp, truth_info.render_ms / 1e3, truth_info.estimated_rmse);
+  else
+    fmt::print("truth {} (cached)\n", truth_path);
 
   RenderSettings base;
   base.width = width;
   base.height = height;
   base.max_bounces = a.max_bounces;
   base.quality = baseline_options();
-  Image unbiased_crn = render_fixed(scene, *accel, camera, base, 2, a.bias_spp);
   const double threads = tbb::this_task_arena::max_concurrency();
   double frame_ms = a.frame_ms;
-  if (a.target_spp > 0) {  // budget from the baseline's speed on this scene and machine
-    PcgSampler sampler(5);
-    TileRenderer renderer(scene, *accel, camera, base, sampler);
-    Film film(width, height);
-    frame_ms = a.target_spp * renderer.render_pass(film, 0, 2).render_ms / 2;
-  }
-  fmt::print("frame budget {:.0f} ms\n", frame_ms);
+  if (a.target_spp > 0)  // budget from the baseline's speed on this scene and machine
+    frame_ms = a.target_spp * measure_ms_per_spp(scene, *accel, camera, base);
+  fmt::print("frame budget {:.1f} ms, {} frames\n", frame_ms, a.frames);
+  fmt::print("{:<11} {:>8} {:>7} {:>7} {:>7} {:>7} {:>8} {:>9} {:>7} {:>8}\n", "config", "ms/spp",
+             "isect", "shade", "shadow", "Mray/s", "spp", "RMSE", "vs base", "bias");
+  std::fflush(stdout);
 
   results.clear();
+  double base_rmse = 0;
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const Config& config : configurations()) {
     if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), config.name) == a.only.end())
       continue;
     RenderSettings s = base;
-    bool one_texel = false;
-    config.apply(s.quality, one_texel, a.clamp);
-    const Scene& used = one_texel ? collapsed : scene;
+    Switches switches{s.quality, false};
+    config.apply(switches, a);
+    s.quality = switches.quality;
+    const Scene& used = switches.one_texel ? collapsed : scene;
     ConfigResult r;
     r.name = config.name;
     {
-      PcgSampler sampler(1);
-      TileRenderer renderer(used, *accel, camera, s, sampler);
+      std::unique_ptr<Sampler> sampler = make_sampler(s.quality.sampler, 1);
+      TileRenderer renderer(used, *accel, camera, s, *sampler);
       Film film(width, height);
       FrameBudgetRenderer budget(renderer, frame_ms);
       double t = 0, spp = 0;
@@ -141,44 +203,35 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
         r.spp.push_back(spp);
         r.rmse.push_back(rmse(film.resolve(), truth));
       }
-      r.ms_per_spp = total.render_ms / std::max(spp, 1e-9);
+      r.ms_per_spp = t / std::max(spp, 1e-9);
       r.mrays_per_s = total.mrays_per_s();
     }
     {  // phase times from a separate profiled pass (the clocks cost a little)
       RenderSettings p = s;
       p.quality.profile_phases = true;
       p.quality.adaptive = false;
-      PcgSampler sampler(3);
-      TileRenderer renderer(used, *accel, camera, p, sampler);
+      std::unique_ptr<Sampler> sampler = make_sampler(p.quality.sampler, 3);
+      TileRenderer renderer(used, *accel, camera, p, *sampler);
       Film film(width, height);
       PassStats ps = renderer.render_pass(film, 0, 2);
       r.intersect = ps.intersect_ms / threads / 2;
       r.shading = ps.shading_ms / threads / 2;
       r.shadow = ps.shadow_ms / threads / 2;
     }
-    if (s.quality.biased()) {
-      RenderSettings b = s;
-      b.quality.adaptive = false;
-      r.bias = rmse(render_fixed(used, *accel, camera, b, 2, a.bias_spp), unbiased_crn);
+    if (s.quality.biased()) {  // same sampler, seed and unbiased switches: only the bias differs
+      RenderSettings biased = s;
+      biased.quality.adaptive = false;
+      RenderSettings unbiased = biased;
+      unbiased.quality = biased.quality.without_bias();
+      r.bias = rmse(render_fixed(used, *accel, camera, biased, 2, a.bias_spp),
+                    render_fixed(used, *accel, camera, unbiased, 2, a.bias_spp));
     }
+    if (r.name == "baseline") base_rmse = r.rmse.back();
+    print_row(r, base_rmse);
     plot_data << "\"" << scene.name << " " << r.name << "\"\n";
     for (size_t i = 0; i < r.time_ms.size(); ++i)
       plot_data << r.time_ms[i] << " " << r.rmse[i] << "\n";
     plot_data << "\n\n";
-    results.push_back(r);
-  }
-
-  const double base_rmse = results.empty() ? 0 : results.front().rmse.back();
-  fmt::print("{:<11} {:>8} {:>7} {:>7} {:>7} {:>7} {:>8} {:>9} {:>6} {:>8}\n", "config", "ms/spp",
-             "isect", "shade", "shadow", "Mray/s", "spp", "RMSE", "vs base", "bias");
-  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-  for (const ConfigResult& r : results) {
-    double ratio = base_rmse > 0 ? r.rmse.back() / base_rmse : 0;
-    fmt::print(
-        "{:<11} {:>8.2f} {:>7.2f} {:>7.2f} {:>7.2f} {:>7.2f} {:>8.1f} {:>9.5f} {:>6.3f} "
-        "{:>8.5f}\n",
-        r.name, r.ms_per_spp, r.intersect, r.shading, r.shadow, r.mrays_per_s, r.spp.back(),
-        r.rmse.back(), ratio, r.bias);
     rows.push_back({{"config", r.name},
                     {"ms_per_spp", r.ms_per_spp},
                     {"intersect_ms_per_spp", r.intersect},
@@ -188,22 +241,17 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
                     {"spp", r.spp},
                     {"time_ms", r.time_ms},
                     {"rmse", r.rmse},
-                    {"rmse_vs_baseline", ratio},
+                    {"rmse_vs_baseline", base_rmse > 0 ? r.rmse.back() / base_rmse : 0.0},
                     {"bias", r.bias}});
+    results.push_back(r);
   }
 
   nlohmann::ordered_json sweep = nlohmann::ordered_json::array();
   if (a.sweep) {
-    auto time_per_spp = [&](RenderSettings s) {
-      PcgSampler sampler(4);
-      TileRenderer renderer(scene, *accel, camera, s, sampler);
-      Film film(width, height);
-      return renderer.render_pass(film, 0, 2).render_ms / 2;
-    };
     for (int tile : {8, 16, 32, 64}) {
       RenderSettings s = base;
       s.tile_size = tile;
-      double ms = time_per_spp(s);
+      double ms = measure_ms_per_spp(scene, *accel, camera, s);
       fmt::print("sweep tile {:>5}: {:.2f} ms/spp\n", tile, ms);
       sweep.push_back({{"mode", "tile"}, {"size", tile}, {"ms_per_spp", ms}});
     }
@@ -211,7 +259,7 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
       RenderSettings s = base;
       s.quality.wavefront = true;
       s.quality.batch_size = batch;
-      double ms = time_per_spp(s);
+      double ms = measure_ms_per_spp(scene, *accel, camera, s);
       fmt::print("sweep batch {:>5}: {:.2f} ms/spp\n", batch, ms);
       sweep.push_back({{"mode", "wavefront"}, {"size", batch}, {"ms_per_spp", ms}});
     }
@@ -221,8 +269,8 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
           {"triangles", scene.triangles.size()},
           {"one_texel_candidates", texel_stats.candidates},
           {"one_texel_collapsed", texel_stats.collapsed},
-          {"truth", ground_truth_path(a.truth_dir, key)},
-          {"truth_spp", a.truth_spp},
+          {"truth", truth_path},
+          {"truth_spp", truth_info.rendered ? truth_info.spp : a.truth_spp},
           {"frame_ms", frame_ms},
           {"configs", rows},
           {"sweep", sweep}};
@@ -244,14 +292,32 @@ void write_plot_script(const std::string& prefix, const std::vector<std::string>
 
 }  // namespace
 
+std::vector<std::string> bench_quality_configurations() {
+  std::vector<std::string> names;
+  for (const Config& c : configurations()) names.push_back(c.name);
+  return names;
+}
+
 int run_bench_quality(const BenchQualityArgs& a) {
+  const std::vector<std::string> known = bench_quality_configurations();
+  for (const std::string& name : a.only)
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw std::invalid_argument("bad --only '" + name + "': expected one of " + list);
+    }
   std::vector<std::string> scenes = a.scenes;
-  if (scenes.empty()) scenes = shared_scene_json_files();
+  if (scenes.empty()) scenes = all_scene_json_files();
   if (scenes.empty()) throw std::invalid_argument("bench quality: no scenes given or found");
   nlohmann::ordered_json out = {{"size", a.size},
                                 {"frame_ms", a.frame_ms},
                                 {"frames", a.frames},
+                                {"target_spp", a.target_spp},
                                 {"max_bounces", a.max_bounces},
+                                {"clamp", a.clamp},
+                                {"clamp_relative", a.clamp_relative},
+                                {"truth_spp", a.truth_spp},
+                                {"truth_until_rmse", a.truth_until_rmse},
                                 {"threads", tbb::this_task_arena::max_concurrency()},
                                 {"scenes", nlohmann::ordered_json::array()}};
   std::ofstream plot_data;

@@ -1,5 +1,6 @@
 // `tuneray bench quality`: RMSE against a cached ground truth after each frame of a frame-budget
-// render, for the baseline, every quality technique alone and all together (docs/quality.md).
+// render, for the baseline, every quality technique alone, the unbiased ones together and all
+// together (docs/quality.md).
 #pragma once
 
 #include <string>
@@ -16,14 +17,19 @@ struct BenchQualityArgs {
   int max_bounces = 3;
   std::string truth_dir = "out/truth";
   int truth_spp = 4096;
+  double truth_until_rmse = 0;    // > 0: the truth stops once its estimated RMSE is below this
   int bias_spp = 32;              // spp of the common-random-number bias estimate
-  float clamp = 10;               // m for the firefly clamp
+  float clamp = 0;                // absolute firefly clamp m for the clamp rows (0: relative)
+  float clamp_relative = 16;      // m = this x the image's mean pixel length
   std::vector<std::string> only;  // run only these configurations
   bool sweep = false;             // tile size / batch size sweep
   std::string json;
   std::string plot;  // prefix: writes PREFIX.dat and PREFIX.gp
   std::string scenes_dir;
 };
+
+// The configuration names, in table order (for --only and the documentation).
+std::vector<std::string> bench_quality_configurations();
 
 int run_bench_quality(const BenchQualityArgs& args);
 

@@ -12,6 +12,7 @@
 #include "accel/factory.h"
 #include "app/cli_parse.h"
 #include "app/commands.h"
+#include "app/ground_truth.h"
 #include "app/progress.h"
 #include "app/quality_cli.h"
 #include "image/io.h"
@@ -45,6 +46,8 @@ struct RenderArgs {
   bool quiet = false;
   double frame_ms = 0;  // > 0: frame-budget mode
   int frames = 1;
+  double until_rmse = 0;  // > 0: stop once the image's estimated RMSE is below this
+  std::string truth_dir;  // non-empty: render (or read) the cached ground truth
   QualityCli quality;
 };
 
@@ -76,6 +79,51 @@ void check_output_extensions(const std::vector<std::string>& outputs) {
   }
 }
 
+void write_outputs(const std::vector<std::string>& outputs, const Image& image, float exposure) {
+  WriteOptions write_options;
+  write_options.exposure = exposure;
+  for (const std::string& out : outputs) {
+    std::filesystem::path parent = std::filesystem::path(out).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    write_image(out, image, write_options);
+  }
+}
+
+// --truth-dir: the ground truth of `bench quality` (same cache, same key), read or rendered.
+int run_truth(const RenderArgs& a, const Scene& scene, const Accel& accel, double load_ms,
+              double build_ms) {
+  auto [width, height] = parse_size(a.size);
+  GroundTruthKey key{a.scene,     scene.cameras[a.camera], width, height, a.max_bounces, a.spp,
+                     a.until_rmse};
+  GroundTruthInfo info;
+  Image image = ground_truth(a.truth_dir, key, scene, accel, &info, !a.quiet);
+  write_outputs(a.outputs, image, a.exposure);
+  std::string path = ground_truth_path(a.truth_dir, key);
+  nlohmann::ordered_json report = {{"scene", a.scene},
+                                   {"truth", path},
+                                   {"rendered", info.rendered},
+                                   {"spp", info.spp},
+                                   {"estimated_rmse", info.estimated_rmse},
+                                   {"load_ms", load_ms},
+                                   {"build_ms", build_ms},
+                                   {"render_ms", info.render_ms},
+                                   {"outputs", a.outputs}};
+  if (!a.report.empty()) {
+    std::ofstream f(a.report);
+    if (!(f << report.dump(2) << "\n")) throw std::runtime_error("cannot write report " + a.report);
+  }
+  if (!a.quiet) {
+    if (info.rendered)
+      std::cout << "truth     " << path << " (" << info.spp << " spp in "
+                << static_cast<int>(info.render_ms) << " ms, estimated RMSE " << info.estimated_rmse
+                << ")\n";
+    else
+      std::cout << "truth     " << path << " (cached)\n";
+    for (const auto& out : a.outputs) std::cout << "wrote     " << out << "\n";
+  }
+  return 0;
+}
+
 int run_render(const RenderArgs& a) {
   auto [width, height] = parse_size(a.size);
   check_output_extensions(a.outputs);
@@ -89,6 +137,16 @@ int run_render(const RenderArgs& a) {
   settings.quality = resolve_quality(a.quality);
   if (settings.quality.adaptive && a.frame_ms <= 0)
     throw std::invalid_argument("--adaptive needs the frame-budget mode (--frame-ms)");
+  if (!a.truth_dir.empty()) {
+    if (settings.quality.biased())
+      throw std::invalid_argument(
+          "--truth-dir renders an unbiased reference: drop --clamp, --clamp-rel, --regularize "
+          "and --lowres-sky");
+    if (a.frame_ms > 0)
+      throw std::invalid_argument("--truth-dir takes --spp (and --until-rmse), not --frame-ms");
+  }
+  if (a.until_rmse > 0 && a.frame_ms > 0)
+    throw std::invalid_argument("--until-rmse takes --spp as its limit, not --frame-ms");
 
   std::unique_ptr<tbb::global_control> thread_limit;
   if (a.threads > 0)
@@ -111,6 +169,8 @@ int run_render(const RenderArgs& a) {
                         scene.triangles.size()};
   BuildStats build = accel->build(geometry);
 
+  if (!a.truth_dir.empty()) return run_truth(a, scene, *accel, load_ms, build.build_ms);
+
   std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, a.seed);
   TileRenderer renderer(scene, *accel, scene.cameras[a.camera], settings, *sampler);
   Film film(width, height);
@@ -132,6 +192,11 @@ int run_render(const RenderArgs& a) {
     PassStats pass = renderer.render_pass(film, static_cast<uint32_t>(s), 1,
                                           [&progress] { progress.advance(); });
     total.accumulate(pass);
+    if (a.until_rmse > 0 && s >= 1) {
+      double estimate = film.estimated_rmse();
+      progress.set_suffix("est. RMSE " + std::to_string(estimate));
+      if (estimate < a.until_rmse) break;
+    }
   }
   progress.finish();
 
@@ -139,13 +204,7 @@ int run_render(const RenderArgs& a) {
   Image image = film.resolve();
   std::vector<std::string> outputs =
       a.outputs.empty() ? std::vector{default_output(scene)} : a.outputs;
-  WriteOptions write_options;
-  write_options.exposure = a.exposure;
-  for (const std::string& out : outputs) {
-    std::filesystem::path parent = std::filesystem::path(out).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
-    write_image(out, image, write_options);
-  }
+  write_outputs(outputs, image, a.exposure);
   double output_ms = ms_since(t_out);
 
   nlohmann::ordered_json report = {
@@ -153,8 +212,8 @@ int run_render(const RenderArgs& a) {
       {"triangles", scene.triangles.size()},
       {"width", width},
       {"height", height},
-      {"spp", a.frame_ms > 0 ? static_cast<double>(total.samples) / (width * height)
-                             : static_cast<double>(a.spp)},
+      {"spp", static_cast<double>(total.samples) / (width * height)},
+      {"estimated_rmse", film.estimated_rmse()},
       {"frame_ms", a.frame_ms},
       {"frames", frames},
       {"one_texel_triangles", one_texel.collapsed},
@@ -232,6 +291,14 @@ CommandAction add_render_command(CLI::App& app) {
   cmd->add_option("--frames", args->frames, "Frames to accumulate in frame-budget mode")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
+  cmd->add_option("--until-rmse", args->until_rmse,
+                  "Stop before --spp once the image's estimated RMSE (from per-pixel variance) is "
+                  "below this")
+      ->check(CLI::Range(0.0, 1e30));
+  cmd->add_option("--truth-dir", args->truth_dir,
+                  "Ground-truth mode: read the cached unbiased reference of this scene, camera, "
+                  "size, bounces and --spp/--until-rmse from this folder, or render and cache it "
+                  "(tiles, PCG, seed 0; shared with bench quality)");
   add_quality_options(cmd, args->quality);
   return [args] { return run_render(*args); };
 }

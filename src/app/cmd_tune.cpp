@@ -24,9 +24,11 @@ struct TuneArgs {
 int run_tune(TuneArgs& a) {
   a.options.objective = parse_objective(a.objective);
   std::tie(a.options.width, a.options.height) = parse_size(a.size);
-  fmt::print("tuning {} (objective {}, {} cameras x {} frames, {}x{}, {} spp) into {}\n",
+  fmt::print("tuning {} (objective {}, {} cameras x {} frames, {}x{}, {} spp{}) into {}\n",
              a.options.scene, a.objective, a.options.cameras, a.options.iterations, a.options.width,
-             a.options.height, a.options.spp, a.options.db_path);
+             a.options.height, a.options.spp,
+             a.options.work_sizes ? ", BVH + scheduler, tile_size, batch_size" : "",
+             a.options.db_path);
   ProgressBar bar("tune", static_cast<uint64_t>(a.options.cameras) * a.options.iterations,
                   !a.quiet && stderr_is_terminal());
   TuneReport report = run_tune_session(
@@ -93,6 +95,9 @@ CommandAction add_tune_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Seed of the tuner and the sampler")->capture_default_str();
   cmd->add_option("--scenes-dir", o.scenes_dir, "Folder to resolve scene files in");
+  cmd->add_flag("--work-sizes", o.work_sizes,
+                "Also tune the scheduler (tile or wavefront) and its tile or batch size "
+                "(stored under its own tuning key)");
   cmd->add_flag("--quiet,-q", a->quiet, "Only the summary");
   return [a] { return run_tune(*a); };
 }

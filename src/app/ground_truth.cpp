@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "app/progress.h"
 #include "image/io.h"
 #include "render/film.h"
 #include "render/tile_renderer.h"
@@ -25,38 +26,63 @@ std::string ground_truth_path(const std::string& dir, const GroundTruthKey& k) {
     << "|" << c.target.x << "," << c.target.y << "," << c.target.z << "|" << c.up.x << "," << c.up.y
     << "," << c.up.z << "|" << c.vfov_deg << "|" << c.lens_radius << "|" << c.focus_distance << "|"
     << k.width << "x" << k.height << "|" << k.max_bounces << "|" << k.spp;
+  if (k.until_rmse > 0) s << "|rmse<" << k.until_rmse;  // absent: names of older caches hold
   char name[40];
   std::snprintf(name, sizeof name, "truth-%016llx.exr",
                 static_cast<unsigned long long>(fnv1a(s.str())));
   return (std::filesystem::path(dir) / name).string();
 }
 
-Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scene& scene,
-                   const Accel& accel, bool* rendered) {
-  std::string path = ground_truth_path(dir, key);
-  if (std::filesystem::exists(path)) {
-    Image cached = read_image(path);
-    if (cached.width() == key.width && cached.height() == key.height) {
-      if (rendered) *rendered = false;
-      return cached;
-    }
-  }
-  RenderSettings settings;  // defaults: tiles, nothing biased
+RenderSettings ground_truth_settings(const GroundTruthKey& key) {
+  RenderSettings settings;
   settings.width = key.width;
   settings.height = key.height;
   settings.max_bounces = key.max_bounces;
-  PcgSampler sampler(0);
+  settings.seed = 0;
+  settings.quality = QualityOptions{}.without_bias();
+  settings.quality.wavefront = false;
+  settings.quality.adaptive = false;
+  settings.quality.sampler = SamplerKind::kPcg;
+  settings.quality.branchless_materials = false;
+  return settings;
+}
+
+Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scene& scene,
+                   const Accel& accel, GroundTruthInfo* info, bool progress) {
+  GroundTruthInfo local;
+  GroundTruthInfo& out = info ? *info : local;
+  out = {};
+  std::string path = ground_truth_path(dir, key);
+  if (std::filesystem::exists(path)) {
+    Image cached = read_image(path);
+    if (cached.width() == key.width && cached.height() == key.height) return cached;
+  }
+  RenderSettings settings = ground_truth_settings(key);
+  PcgSampler sampler(settings.seed);
   TileRenderer renderer(scene, accel, key.camera, settings, sampler);
   Film film(key.width, key.height);
-  for (int done = 0; done < key.spp;) {
-    uint32_t n = static_cast<uint32_t>(std::min(16, key.spp - done));
-    renderer.render_pass(film, static_cast<uint32_t>(done), n);
-    done += static_cast<int>(n);
+  ProgressBar bar("truth", static_cast<uint64_t>(key.spp), progress && stderr_is_terminal());
+  constexpr int kPass = 16;  // spp between error checks
+  while (out.spp < key.spp) {
+    uint32_t n = static_cast<uint32_t>(std::min(kPass, key.spp - out.spp));
+    out.render_ms += renderer.render_pass(film, static_cast<uint32_t>(out.spp), n).render_ms;
+    out.spp += static_cast<int>(n);
+    bar.advance(n);
+    if (key.until_rmse > 0) {
+      out.estimated_rmse = film.estimated_rmse();
+      bar.set_suffix("est. RMSE " + std::to_string(out.estimated_rmse));
+      if (out.estimated_rmse < key.until_rmse) break;
+    }
   }
+  bar.finish();
+  out.estimated_rmse = film.estimated_rmse();
+  out.rendered = true;
   Image image = film.resolve();
   std::filesystem::create_directories(dir);
-  write_image(path, image);
-  if (rendered) *rendered = true;
+  // Written aside and renamed, so an interrupted run never leaves a truncated cache entry.
+  std::string partial = path + ".partial.exr";
+  write_image(partial, image);
+  std::filesystem::rename(partial, path);
   return image;
 }
 

@@ -1,6 +1,6 @@
 // Converged reference images for RMSE at equal time: rendered with every biasing option off and
 // cached as EXR in a user-given folder, keyed by a hash of scene spec, camera, size, bounces
-// and sample count.
+// and sample count (or error target).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 
 #include "accel/accel.h"
 #include "image/image.h"
+#include "render/render_settings.h"
 #include "scene/scene.h"
 
 namespace tuneray {
@@ -17,15 +18,28 @@ struct GroundTruthKey {
   CameraDesc camera;
   int width = 0, height = 0;
   int max_bounces = 3;
-  int spp = 4096;
+  int spp = 4096;         // samples per pixel (the most, when until_rmse > 0)
+  double until_rmse = 0;  // > 0: stop once Film::estimated_rmse() is below it
 };
 
 // `dir`/truth-<hash>.exr; the hash covers every field of the key.
 std::string ground_truth_path(const std::string& dir, const GroundTruthKey& key);
 
-// Reads the cached image, or renders it (tiles, PCG sampler, seed 0, unbiased) and writes it.
-// `rendered` (optional) tells which happened.
+// The settings a ground truth is rendered with: tiles, PCG sampler, seed 0, per-type material
+// evaluation, every biased option off. The equal-time renders use other seeds, so their noise
+// is independent of the reference's.
+RenderSettings ground_truth_settings(const GroundTruthKey& key);
+
+struct GroundTruthInfo {
+  bool rendered = false;  // false: read from the cache
+  int spp = 0;            // samples per pixel rendered (0 when cached)
+  double estimated_rmse = 0;
+  double render_ms = 0;
+};
+
+// Reads the cached image, or renders it and writes it. `progress` draws a bar on stderr while
+// rendering (when stderr is a terminal).
 Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scene& scene,
-                   const Accel& accel, bool* rendered = nullptr);
+                   const Accel& accel, GroundTruthInfo* info = nullptr, bool progress = true);
 
 }  // namespace tuneray

@@ -26,6 +26,11 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
   cmd->add_option("--clamp", o.clamp, "Biased: max length of a path sample's RGB (0 = off)")
       ->check(CLI::Range(0.0f, 1e30f))
       ->capture_default_str();
+  cmd->add_option("--clamp-rel", o.clamp_relative,
+                  "Biased: clamp path samples to this many times the image's mean pixel length "
+                  "(0 = off; the first pass is unclamped)")
+      ->check(CLI::Range(0.0f, 1e30f))
+      ->capture_default_str();
   cmd->add_flag("--adaptive", o.adaptive,
                 "Adaptive sampling (frame-budget mode): extra samples where variance is high");
   cmd->add_option("--adaptive-min-spp", o.adaptive_min_spp,

@@ -1,5 +1,6 @@
 #include "app/scene_paths.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -53,6 +54,26 @@ std::vector<std::string> shared_scene_files(const std::string& scenes_dir) {
 }  // namespace tuneray
 
 namespace tuneray {
+
+namespace {
+// scenes/ relative to the working directory, else the executable's checkout; empty if neither.
+fs::path checkout_scenes_dir() {
+  std::error_code ec;
+  for (const fs::path& dir : {fs::path("scenes"), checkout_root() / "scenes"})
+    if (fs::is_directory(dir, ec)) return dir;
+  return {};
+}
+}  // namespace
+
+std::vector<std::string> all_scene_json_files() {
+  std::vector<std::string> out;
+  fs::path dir = checkout_scenes_dir();
+  if (dir.empty()) return out;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".json") out.push_back((dir / e.path().filename()).string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
 
 std::vector<std::string> shared_scene_json_files() {
   static const char* kFiles[] = {

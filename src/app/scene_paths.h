@@ -18,4 +18,8 @@ std::vector<std::string> shared_scene_files(const std::string& scenes_dir);
 // folder. Empty when the checkout's scenes/ folder is not found.
 std::vector<std::string> shared_scene_json_files();
 
+// Every scenes/*.json of this checkout, by name (the quality benchmark's default: every shared
+// scene, both Cornell boxes included). Empty when the folder is not found.
+std::vector<std::string> all_scene_json_files();
+
 }  // namespace tuneray

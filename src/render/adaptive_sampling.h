@@ -9,11 +9,26 @@
 
 namespace tuneray {
 
+struct AdaptiveOptions {
+  // s_i gets a floor of this fraction of the mean s, so a pixel whose first samples happened
+  // to agree is not starved.
+  double sigma_floor = 0.05;
+  // No pixel may end above this multiple of the mean sample count after the allocation. The
+  // variance estimate of a few samples is heavy-tailed: without a cap one firefly can draw a
+  // large share of the frame, and the tile holding it then finishes last.
+  double max_ratio = 8.0;
+  // Estimate each pixel's variance as the mean over its 3x3 neighbourhood: noise is spatially
+  // coherent (a glossy highlight, a penumbra), and a lone estimate from 4 samples is not.
+  bool filter = true;
+};
+
 // Splits `budget` extra samples over the film's pixels. Pixel i with n_i samples and estimated
 // standard deviation s_i has expected squared error s_i^2 / n_i; minimising the sum under a
-// fixed total gives n_i + k_i proportional to s_i (Lagrange), so k_i = max(0, c s_i - n_i) with
-// c found by bisection. s_i gets a floor of 5% of the mean s so that a pixel whose first samples
-// happened to agree is not starved. Returns per-pixel counts (row-major) summing to <= budget.
-std::vector<uint32_t> allocate_adaptive_samples(const Film& film, uint64_t budget);
+// fixed total gives n_i + k_i proportional to s_i (Lagrange), so
+// k_i = clamp(c s_i, 0, cap) - n_i (at least 0) with c found by bisection.
+// Returns per-pixel counts (row-major) summing to <= budget (rounding down loses less than one
+// sample per pixel).
+std::vector<uint32_t> allocate_adaptive_samples(const Film& film, uint64_t budget,
+                                                const AdaptiveOptions& options = {});
 
 }  // namespace tuneray

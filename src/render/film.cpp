@@ -1,6 +1,7 @@
 #include "render/film.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tuneray {
 
@@ -18,13 +19,38 @@ double Film::variance_of_mean(int x, int y) const {
   size_t i = static_cast<size_t>(y) * width() + x;
   double n = samples_[i];
   if (n < 2) return 0.0;
-  double mean = luminance(sum_.at(x, y)) / n;
-  double variance = (luminance_sq_[i] - n * mean * mean) / (n - 1);
-  return std::max(0.0, variance) / n;
+  const Color& sum = sum_.at(x, y);
+  const SquareSum& sq = square_sum_[i];
+  auto variance = [n](double channel_sum, double square_sum) {
+    double mean = channel_sum / n;
+    return std::max(0.0, (square_sum - n * mean * mean) / (n - 1));
+  };
+  return (variance(sum.x, sq.r) + variance(sum.y, sq.g) + variance(sum.z, sq.b)) / (3.0 * n);
+}
+
+double Film::estimated_rmse() const {
+  double total = 0;
+  for (int y = 0; y < height(); ++y)
+    for (int x = 0; x < width(); ++x) total += variance_of_mean(x, y);
+  size_t n = static_cast<size_t>(width()) * height();
+  return n > 0 ? std::sqrt(total / static_cast<double>(n)) : 0.0;
+}
+
+double Film::mean_value_length() const {
+  double total = 0;
+  size_t counted = 0;
+  for (int y = 0; y < height(); ++y)
+    for (int x = 0; x < width(); ++x) {
+      uint32_t n = samples(x, y);
+      if (n == 0) continue;
+      total += length(sum_.at(x, y)) / n;
+      ++counted;
+    }
+  return counted > 0 ? total / static_cast<double>(counted) : 0.0;
 }
 
 void Film::clear() {
-  std::fill(luminance_sq_.begin(), luminance_sq_.end(), 0.0);
+  std::fill(square_sum_.begin(), square_sum_.end(), SquareSum{});
   std::fill(sum_.data(), sum_.data() + sum_.pixel_count(), Color(0.0f));
   std::fill(samples_.begin(), samples_.end(), 0u);
 }

@@ -8,29 +8,55 @@
 
 namespace tuneray {
 
+// Per-channel sums of squared sample values: with the sum and count, a pixel's variance in the
+// same terms as our RMSE (r, g and b counted as separate values).
+struct SquareSum {
+  double r = 0, g = 0, b = 0;
+  void add(Color c) {
+    r += static_cast<double>(c.x) * c.x;
+    g += static_cast<double>(c.y) * c.y;
+    b += static_cast<double>(c.z) * c.z;
+  }
+  static SquareSum of(Color c) {
+    SquareSum s;
+    s.add(c);
+    return s;
+  }
+};
+
 class Film {
  public:
   Film(int width, int height)
       : sum_(width, height),
         samples_(static_cast<size_t>(width) * height, 0),
-        luminance_sq_(static_cast<size_t>(width) * height, 0.0) {}
+        square_sum_(static_cast<size_t>(width) * height) {}
 
   int width() const { return sum_.width(); }
   int height() const { return sum_.height(); }
 
-  // Single writer per pixel (tiles do not overlap), so no synchronisation.
-  // `luminance_sq_sum` is the sum of the squared luminances of the samples (for the variance
-  // estimate of adaptive sampling).
-  void add(int x, int y, Color radiance_sum, uint32_t count, double luminance_sq_sum = 0) {
+  // Single writer per pixel (tiles do not overlap), so no synchronisation. `squares` sums the
+  // samples' squared channels (variance estimates for adaptive sampling and error estimates).
+  void add(int x, int y, Color radiance_sum, uint32_t count, const SquareSum& squares = {}) {
     sum_.at(x, y) += radiance_sum;
     size_t i = static_cast<size_t>(y) * width() + x;
     samples_[i] += count;
-    luminance_sq_[i] += luminance_sq_sum;
+    square_sum_[i].r += squares.r;
+    square_sum_[i].g += squares.g;
+    square_sum_[i].b += squares.b;
   }
   uint32_t samples(int x, int y) const { return samples_[static_cast<size_t>(y) * width() + x]; }
 
-  // Estimated variance of the pixel's mean luminance (sample variance / n); 0 below 2 samples.
+  // Estimated variance of the pixel's mean, averaged over r, g and b (sample variance / n); 0
+  // below 2 samples.
   double variance_of_mean(int x, int y) const;
+
+  // The image's own expected RMSE against its converged limit (r, g, b counted separately, as
+  // image/metrics does): sqrt(mean of variance_of_mean). Pixels with < 2 samples count as 0.
+  double estimated_rmse() const;
+
+  // Mean over the pixels that have samples of the length sqrt(r^2+g^2+b^2) of their current
+  // estimate; 0 when no pixel has one (the scale of a relative firefly clamp).
+  double mean_value_length() const;
 
   // The current estimate (sum / count per pixel).
   Image resolve() const;
@@ -39,7 +65,7 @@ class Film {
  private:
   Image sum_;
   std::vector<uint32_t> samples_;
-  std::vector<double> luminance_sq_;
+  std::vector<SquareSum> square_sum_;
 };
 
 }  // namespace tuneray

@@ -8,20 +8,31 @@
 
 namespace tuneray {
 
-PassStats FrameBudgetRenderer::add_samples(Film& film, uint32_t spp) {
+bool FrameBudgetRenderer::adaptive_ready() const {
+  const QualityOptions& q = renderer_.settings().quality;
+  return q.adaptive && min_samples_ >= static_cast<uint32_t>(std::max(2, q.adaptive_min_spp));
+}
+
+PassStats FrameBudgetRenderer::add_samples(Film& film, double spp) {
   const RenderSettings& s = renderer_.settings();
+  const size_t pixels = static_cast<size_t>(s.width) * s.height;
+  if (adaptive_ready()) {
+    auto samples = static_cast<uint64_t>(std::llround(spp * static_cast<double>(pixels)));
+    return renderer_.render_extra(film,
+                                  allocate_adaptive_samples(film, std::max<uint64_t>(1, samples)));
+  }
+  auto whole = static_cast<uint32_t>(std::clamp(std::floor(spp), 1.0, 1e6));
   if (!s.quality.adaptive) {
-    PassStats stats = renderer_.render_pass(film, next_sample_, spp);
-    next_sample_ += spp;
+    PassStats stats = renderer_.render_pass(film, next_sample_, whole);
+    next_sample_ += whole;
     return stats;
   }
-  const size_t pixels = static_cast<size_t>(s.width) * s.height;
+  // Uniform warm-up until the variance can be trusted; never past it, so the adaptive passes
+  // start as early as they may.
   uint32_t min_spp = static_cast<uint32_t>(std::max(2, s.quality.adaptive_min_spp));
-  if (min_samples_ < min_spp) {  // uniform warm-up until the variance can be trusted
-    min_samples_ += spp;
-    return renderer_.render_extra(film, std::vector<uint32_t>(pixels, spp));
-  }
-  return renderer_.render_extra(film, allocate_adaptive_samples(film, uint64_t{spp} * pixels));
+  whole = std::min(whole, min_spp - min_samples_);
+  min_samples_ += whole;
+  return renderer_.render_extra(film, std::vector<uint32_t>(pixels, whole));
 }
 
 FrameResult FrameBudgetRenderer::render_frame(Film& film) {
@@ -35,18 +46,16 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film) {
   FrameResult frame;
   bool first_pass = true;
   for (;;) {
-    double left = frame_ms_ - elapsed();
-    uint32_t spp = 1;
-    if (ms_per_spp_ > 0) {
-      double fit = std::floor(left / ms_per_spp_);
-      if (fit < 1) {
-        if (!first_pass) break;
-        fit = 1;  // every frame gets at least one sample per pixel
-      }
-      spp = static_cast<uint32_t>(std::min(fit, 1e6));
+    double fit = ms_per_spp_ > 0 ? (frame_ms_ - elapsed()) / ms_per_spp_ : 1.0;
+    // Adaptive passes can be a fraction of a sample per pixel, uniform ones cannot. Every
+    // frame gets at least one pass.
+    double smallest = adaptive_ready() ? 0.05 : 1.0;
+    if (fit < smallest) {
+      if (!first_pass) break;
+      fit = smallest < 1.0 ? std::max(fit, smallest) : 1.0;
     }
     auto t0 = std::chrono::steady_clock::now();
-    PassStats pass = add_samples(film, spp);
+    PassStats pass = add_samples(film, std::min(fit, 1e6));
     double pass_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     double per_spp = pass_ms * pixels / std::max<double>(1.0, static_cast<double>(pass.samples));

@@ -25,8 +25,11 @@ class FrameBudgetRenderer {
   double ms_per_spp() const { return ms_per_spp_; }
 
  private:
-  // Adds `spp` samples per pixel (uniform, or adaptively placed once enough are there).
-  PassStats add_samples(Film& film, uint32_t spp);
+  // True once every pixel has the uniform samples adaptive sampling starts from.
+  bool adaptive_ready() const;
+  // Adds `spp` samples per pixel on average: uniform passes round down to whole samples (at
+  // least 1); adaptive passes place round(spp x pixels) samples where the error is highest.
+  PassStats add_samples(Film& film, double spp);
 
   const TileRenderer& renderer_;
   double frame_ms_;

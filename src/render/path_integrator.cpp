@@ -82,7 +82,8 @@ PathState PathIntegrator::start(const Ray& camera_ray) {
   return s;
 }
 
-Color PathIntegrator::radiance(Ray ray, Sampler& sampler, PathCounters& counters) const {
+Color PathIntegrator::radiance(Ray ray, Sampler& sampler, PathCounters& counters,
+                               float clamp) const {
   PathState state = start(ray);
   const bool profile = settings_.quality.profile_phases;
   while (state.alive) {
@@ -101,20 +102,19 @@ Color PathIntegrator::radiance(Ray ray, Sampler& sampler, PathCounters& counters
       if (!blocked) state.L += shadow.contribution;
     }
   }
-  return finish(state, counters);
+  return finish(state, counters, clamp);
 }
 
-Color PathIntegrator::finish(const PathState& state, PathCounters& counters) const {
+Color PathIntegrator::finish(const PathState& state, PathCounters& counters, float clamp) const {
   Color indirect = state.L;
   if (!is_finite(indirect) || !is_finite(state.L_camera)) {
     ++counters.invalid_samples;
     return Color(0.0f);
   }
   // Emitters seen directly are not fireflies; clamping them would darken every visible light.
-  const float m = settings_.quality.clamp;
-  if (m > 0) {
+  if (clamp > 0) {
     float len = length(indirect);
-    if (len > m) indirect *= m / len;
+    if (len > clamp) indirect *= clamp / len;
   }
   return state.L_camera + indirect;
 }

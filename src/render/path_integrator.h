@@ -52,18 +52,20 @@ class PathIntegrator {
  public:
   PathIntegrator(const Scene& scene, const Accel& accel, const RenderSettings& settings);
 
-  // Radiance arriving along `ray` (a camera ray): the steps below run back to back.
-  Color radiance(Ray ray, Sampler& sampler, PathCounters& counters) const;
+  // Radiance arriving along `ray` (a camera ray): the steps below run back to back. `clamp` is
+  // the firefly clamp m for this sample (0 = off); the scheduler resolves it per pass
+  // (TileRenderer::clamp_for), since a relative clamp depends on the image so far.
+  Color radiance(Ray ray, Sampler& sampler, PathCounters& counters, float clamp) const;
 
   // The steps. start() makes the state of a camera path. shade() consumes the result of
   // tracing state.ray (found/hit), adds emission, samples a light and the next direction:
   // afterwards state.ray is the next ray or state.alive is false, and `shadow` says whether a
-  // shadow ray must be traced. finish() is the sample's value: NaN/inf dropped; with the firefly
-  // clamp on, everything but what the camera sees directly is clamped.
+  // shadow ray must be traced. finish() is the sample's value: NaN/inf dropped; with a firefly
+  // clamp m > 0, everything but what the camera sees directly is clamped to length m.
   static PathState start(const Ray& camera_ray);
   void shade(PathState& state, bool found, const Hit& hit, Sampler& sampler,
              ShadowRequest& shadow) const;
-  Color finish(const PathState& state, PathCounters& counters) const;
+  Color finish(const PathState& state, PathCounters& counters, float clamp) const;
 
   const LightSampler& lights() const { return lights_; }
   const Accel& accel() const { return accel_; }

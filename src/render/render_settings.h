@@ -20,19 +20,32 @@ enum class SamplerKind : uint8_t {
 // The equal-time quality switches (docs/quality.md). Unbiased ones change speed only; the
 // biased ones (clamp, regularize, lowres_sky) must be off for ground-truth renders.
 struct QualityOptions {
-  bool wavefront = false;       // waves of paths with batched intersection (else tiles)
-  int batch_size = 4096;        // paths per wave (a work size the tuner may pick)
-  bool sky_rgba = true;         // environment texels as aligned 16-byte RGBA (else 12-byte RGB)
-  bool lowres_sky = false;      // biased: 8x8-averaged sky for rays after the first bounce
-  bool regularize = false;      // biased: roughness never below the path's largest so far
-  float clamp = 0;              // biased: max length of a path contribution (0 = off)
+  bool wavefront = false;   // waves of paths with batched intersection (else tiles)
+  int batch_size = 4096;    // paths per wave (a work size the tuner may pick)
+  bool sky_rgba = true;     // environment texels as aligned 16-byte RGBA (else 12-byte RGB)
+  bool lowres_sky = false;  // biased: 8x8-averaged sky for rays after the first bounce
+  bool regularize = false;  // biased: roughness never below the path's largest so far
+  float clamp = 0;          // biased: max length of a path contribution (0 = off)
+  // Biased: clamp relative to the image, m = clamp_relative x the mean length of the pixel
+  // values accumulated so far (0 = off; the first pass of a film is unclamped). One setting
+  // then fits scenes whose brightness differs by orders of magnitude. `clamp` wins if both set.
+  float clamp_relative = 0;
   bool adaptive = false;        // extra samples where the estimated error is highest
   int adaptive_min_spp = 4;     // uniform samples per pixel before the variance is trusted
   bool profile_phases = false;  // time intersection / shading / shadow (costs a little)
   SamplerKind sampler = SamplerKind::kPcg;  // unbiased either way
   bool branchless_materials = false;        // f and pdf in one straight-line pass (bsdf_evaluate)
 
-  bool biased() const { return lowres_sky || regularize || clamp > 0; }
+  bool biased() const { return lowres_sky || regularize || clamp > 0 || clamp_relative > 0; }
+
+  // Every option that changes the expected image switched off, every unbiased one left as it
+  // is: what a ground-truth render uses.
+  QualityOptions without_bias() const {
+    QualityOptions o = *this;
+    o.lowres_sky = o.regularize = false;
+    o.clamp = o.clamp_relative = 0;
+    return o;
+  }
 };
 
 struct RenderSettings {

@@ -92,18 +92,28 @@ PassStats TileRenderer::render_extra(Film& film, const std::vector<uint32_t>& ex
   return run(film, work, {});
 }
 
+float TileRenderer::clamp_for(const Film& film) const {
+  const QualityOptions& q = settings_.quality;
+  if (q.clamp > 0) return q.clamp;
+  if (q.clamp_relative > 0) return static_cast<float>(q.clamp_relative * film.mean_value_length());
+  return 0.0f;
+}
+
 PassStats TileRenderer::run(Film& film, const PixelWork& work,
                             const std::function<void()>& on_tile_done) const {
+  // Resolved once per pass, before any pixel of it is written, so the result does not depend
+  // on the order in which threads finish.
+  const float clamp = clamp_for(film);
   if (settings_.quality.wavefront) {
-    PassStats stats = run_wavefront(film, work);
+    PassStats stats = run_wavefront(film, work, clamp);
     if (on_tile_done)
       for (int i = 0; i < tile_count(); ++i) on_tile_done();
     return stats;
   }
-  return run_tiles(film, work, on_tile_done);
+  return run_tiles(film, work, clamp, on_tile_done);
 }
 
-PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work,
+PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, float clamp,
                                   const std::function<void()>& on_tile_done) const {
   const int ts = std::max(1, settings_.tile_size);
   const int tiles_x = (settings_.width + ts - 1) / ts;
@@ -127,18 +137,18 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work,
               uint32_t first = work.first(pixel), n = work.count(pixel);
               if (n == 0) continue;
               Color sum(0.0f);
-              double lum_sq = 0;
+              SquareSum squares;
               for (uint32_t s = 0; s < n; ++s) {
                 sampler->start_pixel_sample(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
                                             first + s);
                 std::array<float, 4> u = sampler->next4();
                 Ray ray = camera_.generate_ray({x + u[0], y + u[1]}, {u[2], u[3]});
-                Color L = integrator_.radiance(ray, *sampler, local);
+                Color L = integrator_.radiance(ray, *sampler, local, clamp);
                 sum += L;
-                lum_sq += static_cast<double>(luminance(L)) * luminance(L);
+                squares.add(L);
               }
               local_samples += n;
-              film.add(x, y, sum, n, lum_sq);
+              film.add(x, y, sum, n, squares);
             }
           if (profile) local.total_ns += now_ns() - t0;
           if (on_tile_done) on_tile_done();
@@ -150,7 +160,7 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work,
   return combine(counters, ms, samples.combine(std::plus<uint64_t>()));
 }
 
-PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work) const {
+PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work, float clamp) const {
   const int width = settings_.width;
   const size_t pixel_count = static_cast<size_t>(width) * settings_.height;
   const size_t batch = static_cast<size_t>(std::max(1, settings_.quality.batch_size));
@@ -252,14 +262,14 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work) const {
           for (size_t p = p0; p < p1; ++p) {
             if (count[p] == 0) continue;
             Color sum(0.0f);
-            double lum_sq = 0;
+            SquareSum squares;
             for (uint32_t s = 0; s < count[p]; ++s, ++k) {
-              Color L = integrator_.finish(b.states[k], local);
+              Color L = integrator_.finish(b.states[k], local, clamp);
               sum += L;
-              lum_sq += static_cast<double>(luminance(L)) * luminance(L);
+              squares.add(L);
             }
             film.add(static_cast<int>(p % width), static_cast<int>(p / width), sum, count[p],
-                     lum_sq);
+                     squares);
           }
           if (profile) local.total_ns += now_ns() - t_chunk;
         }

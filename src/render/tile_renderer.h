@@ -54,6 +54,18 @@ class TileRenderer {
   void set_camera(const CameraDesc& camera) {
     camera_ = Camera(camera, settings_.width, settings_.height);
   }
+  // Switches scheduler and work sizes between passes without rebuilding the integrator and its
+  // lights: it keeps its own copy of the settings and reads none of these fields, and neither
+  // changes the image, only the speed (the tuner measures them frame by frame).
+  void set_work_sizes(bool wavefront, int tile_size, int batch_size) {
+    settings_.quality.wavefront = wavefront;
+    settings_.tile_size = tile_size;
+    settings_.quality.batch_size = batch_size;
+  }
+
+  // The firefly clamp m of the next pass into `film`: quality.clamp if set, else
+  // quality.clamp_relative x film.mean_value_length() (0 = no clamp, e.g. on an empty film).
+  float clamp_for(const Film& film) const;
 
   int tile_count() const;
   const PathIntegrator& integrator() const { return integrator_; }
@@ -65,9 +77,9 @@ class TileRenderer {
     std::function<uint32_t(size_t)> first, count;
   };
   PassStats run(Film& film, const PixelWork& work, const std::function<void()>& on_tile_done) const;
-  PassStats run_tiles(Film& film, const PixelWork& work,
+  PassStats run_tiles(Film& film, const PixelWork& work, float clamp,
                       const std::function<void()>& on_tile_done) const;
-  PassStats run_wavefront(Film& film, const PixelWork& work) const;
+  PassStats run_wavefront(Film& film, const PixelWork& work, float clamp) const;
 
   const Scene& scene_;
   RenderSettings settings_;

@@ -31,6 +31,11 @@ FrameBench::FrameBench(const Scene& scene, const RenderSettings& settings, uint3
       film_(settings.width, settings.height) {}
 
 FrameCost FrameBench::run(const BvhConfig& config, const CameraDesc& camera) {
+  return run(config, WorkSizes::of(settings_), camera);
+}
+
+FrameCost FrameBench::run(const BvhConfig& config, const WorkSizes& work,
+                          const CameraDesc& camera) {
   FrameCost cost;
   if (!built_ || !(*built_ == config) || objective_ == Objective::kTotal) {
     built_.reset();
@@ -51,6 +56,7 @@ FrameCost FrameBench::run(const BvhConfig& config, const CameraDesc& camera) {
   // so frames are not identical.
   film_.clear();
   renderer_.set_camera(camera);
+  renderer_.set_work_sizes(work.wavefront, work.tile_size, work.batch_size);
   PassStats pass = renderer_.render_pass(film_, frame_ * spp_, spp_);
   ++frame_;
   cost.render_ms = pass.render_ms;

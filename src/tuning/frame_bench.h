@@ -1,6 +1,7 @@
-// Measures what the tuner optimises: one frame rendered with a given BVH configuration from a
-// given camera. The BVH is rebuilt only when the configuration changes (progressive rendering)
-// or for every frame (real-time rendering, objective `total`).
+// Measures what the tuner optimises: one frame rendered with a given BVH configuration (and
+// optionally scheduler and work sizes) from a given camera. The BVH is rebuilt only when its
+// configuration changes (progressive rendering) or for every frame (real-time rendering,
+// objective `total`); a change of work sizes alone never rebuilds it.
 #pragma once
 
 #include <optional>
@@ -13,6 +14,7 @@
 #include "render/sampler.h"
 #include "render/tile_renderer.h"
 #include "scene/scene.h"
+#include "tuning/work_sizes.h"
 
 namespace tuneray {
 
@@ -38,13 +40,18 @@ class FrameBench {
  public:
   FrameBench(const Scene& scene, const RenderSettings& settings, uint32_t spp, Objective objective);
 
-  // Renders one frame of `spp` samples per pixel with `config` from `camera`.
+  // Renders one frame of `spp` samples per pixel with `config` from `camera`, with the work
+  // sizes of the settings given to the constructor.
   FrameCost run(const BvhConfig& config, const CameraDesc& camera);
+  // The same with other work sizes. The integrator and its lights are kept.
+  FrameCost run(const BvhConfig& config, const WorkSizes& work, const CameraDesc& camera);
   // The last successful build's statistics.
   const BuildStats& build_stats() const { return build_stats_; }
   Objective objective() const { return objective_; }
   const RenderSettings& settings() const { return settings_; }
   uint32_t spp() const { return spp_; }
+  // The last frame's samples (lets tests compare schedulers; the tuner only needs the time).
+  const Film& film() const { return film_; }
 
  private:
   const Scene& scene_;

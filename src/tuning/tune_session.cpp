@@ -10,6 +10,7 @@
 #include "scene/load.h"
 #include "tuner/hybrid_tuner.h"
 #include "tuning/bvh_space.h"
+#include "tuning/render_space.h"
 #include "tuning/stats.h"
 #include "tuning/tuner_state.h"
 
@@ -33,9 +34,8 @@ std::vector<CameraDesc> camera_positions(const Scene& scene, int path_index, int
 }
 
 std::string tuning_key(const TuneOptions& o) {
-  // Costs are only comparable at the same objective, image size, spp and path length.
-  return fmt::format("bvh/{}/{}x{}/{}spp/{}b", to_string(o.objective), o.width, o.height, o.spp,
-                     o.max_bounces);
+  return fmt::format("{}/{}/{}x{}/{}spp/{}b", o.work_sizes ? "bvh+work" : "bvh",
+                     to_string(o.objective), o.width, o.height, o.spp, o.max_bounces);
 }
 
 TuneReport run_tune_session(const TuneOptions& o,
@@ -57,25 +57,33 @@ TuneReport run_tune_session(const TuneOptions& o,
   options.search.max_iterations = o.iterations;
   options.db_path = o.db_path;
   options.tuning_key = tuning_key(o);
-  tuner::Space space = make_bvh_space();
-  tuner::HybridTuner tuner(space, make_indicator_schema(), options);
 
   RenderSettings settings;
   settings.width = o.width;
   settings.height = o.height;
   settings.max_bounces = o.max_bounces;
   settings.seed = o.seed;
+  tuner::Space space = o.work_sizes ? make_render_space(settings) : make_bvh_space();
+  tuner::HybridTuner tuner(space, make_indicator_schema(), options);
+  // Without --work-sizes every frame keeps the settings' scheduler and sizes.
+  auto work_of = [&](const tuner::Config& c) {
+    return o.work_sizes ? to_work_sizes(c) : WorkSizes::of(settings);
+  };
+
   FrameBench bench(scene, settings, o.spp, o.objective);
   const BvhConfig default_config;
-  bench.run(default_config, cameras[0]);  // warm-up: threads, caches, page faults (not counted)
+  const WorkSizes default_work = work_of(space.default_config());
+  // Warm-up: threads, caches, page faults (not counted).
+  bench.run(default_config, default_work, cameras[0]);
 
   TuneReport report;
   TuneProgress progress;
   progress.frames_total = o.iterations * static_cast<int>(cameras.size());
-  auto measure_median = [&](const BvhConfig& config, const CameraDesc& camera) {
+  auto measure_median = [&](const BvhConfig& config, const WorkSizes& work,
+                            const CameraDesc& camera) {
     std::vector<double> ms;
     for (int k = 0; k < o.baseline_repeats; ++k)
-      ms.push_back(bench.run(config, camera).cost_ms(o.objective));
+      ms.push_back(bench.run(config, work, camera).cost_ms(o.objective));
     return median(ms);
   };
   for (size_t ci = 0; ci < cameras.size(); ++ci) {
@@ -83,12 +91,12 @@ TuneReport run_tune_session(const TuneOptions& o,
     CameraTuneResult r;
     r.camera = static_cast<int>(ci);
     // The baseline is measured outside the tuner: it is the yardstick, not a tuning decision.
-    r.default_ms = measure_median(default_config, cameras[ci]);
+    r.default_ms = measure_median(default_config, default_work, cameras[ci]);
     double best_ms = r.default_ms;
     for (int it = 0; it < o.iterations; ++it) {
       tuner::Config c = tuner.suggest(state);
       if (it == 0) r.mode = tuner.mode() == tuner::TunerMode::kSearch ? "search" : "exploit";
-      FrameCost cost = bench.run(to_bvh_config(c), cameras[ci]);
+      FrameCost cost = bench.run(to_bvh_config(c), work_of(c), cameras[ci]);
       tuner::Extras extras = {{"build_ms", cost.build_ms}, {"render_ms", cost.render_ms}};
       if (cost.ok) {
         tuner.report(c, cost.cost_ms(o.objective) / 1000.0, extras);
@@ -107,9 +115,12 @@ TuneReport run_tune_session(const TuneOptions& o,
         on_frame(progress);
       }
     }
-    BvhConfig chosen = to_bvh_config(tuner.best(state));
-    r.chosen_ms = measure_median(chosen, cameras[ci]);
+    const tuner::Config best = tuner.best(state);
+    const BvhConfig chosen = to_bvh_config(best);
+    const WorkSizes chosen_work = work_of(best);
+    r.chosen_ms = measure_median(chosen, chosen_work, cameras[ci]);
     r.config = chosen.to_string();
+    if (o.work_sizes) r.config += "," + chosen_work.to_string();
     if (auto s = tuner.summary(state)) r.converged = s->converged;
     if (log)
       log(fmt::format(

@@ -28,6 +28,8 @@ struct TuneOptions {
   int max_bounces = 3;
   uint64_t seed = 1;
   int baseline_repeats = 3;  // side-by-side re-measurements of default and chosen
+  // Also tune the scheduler and its work size (tuning/render_space.h), under another tuning key.
+  bool work_sizes = false;
   bool progress = true;
 };
 
@@ -38,7 +40,7 @@ struct CameraTuneResult {
   double default_ms = 0;      // median of baseline_repeats, measured beside chosen_ms
   double chosen_ms = 0;       // the configuration the tuner settled on
   double accumulated_ms = 0;  // sum of the costs of all frames at this camera
-  std::string config;         // chosen configuration
+  std::string config;         // chosen configuration (BVH, then work sizes when tuned)
   bool converged = false;
   double speedup() const { return chosen_ms > 0 ? default_ms / chosen_ms : 0.0; }
 };
@@ -53,6 +55,11 @@ struct TuneProgress {
   int frames_done = 0, frames_total = 0;
   double best_speedup = 0;  // default cost / best cost seen so far at this camera
 };
+
+// The database namespace of a session: costs are only comparable at the same objective, image
+// size, spp, path length and search space, so samples of the space with work sizes are stored
+// apart from BVH-only ones.
+std::string tuning_key(const TuneOptions& options);
 
 // Runs the loop; `log` receives one line per camera, `on_frame` is called after every frame
 // (both may be empty).

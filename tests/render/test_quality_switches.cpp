@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "accel/embree_native.h"
 #include "render/adaptive_sampling.h"
@@ -107,18 +108,75 @@ TEST(QualitySwitches, ClampLimitsTheLengthOfTheIndirectPart) {
   Scene scene = load_scene("cornell");
   EmbreeNativeAccel accel;
   RenderSettings s;
-  s.quality.clamp = 2.0f;
   PathIntegrator integrator(scene, accel, s);
   PathState st;
   st.L = Color(30.0f, 40.0f, 0.0f);  // length 50
   st.L_camera = Color(5.0f);
   PathCounters counters;
-  Color out = integrator.finish(st, counters);
+  Color out = integrator.finish(st, counters, 2.0f);
   EXPECT_NEAR(out.x, 5.0f + 2.0f * 0.6f, 1e-5f);
   EXPECT_NEAR(out.y, 5.0f + 2.0f * 0.8f, 1e-5f);
   EXPECT_NEAR(out.z, 5.0f, 1e-5f);
-  st.L = Color(0.3f, 0.4f, 0.0f);  // below m: untouched
-  EXPECT_EQ(integrator.finish(st, counters), st.L_camera + st.L);
+  EXPECT_EQ(integrator.finish(st, counters, 0.0f), st.L_camera + st.L);  // 0 = off
+  st.L = Color(0.3f, 0.4f, 0.0f);                                        // below m: untouched
+  EXPECT_EQ(integrator.finish(st, counters, 2.0f), st.L_camera + st.L);
+}
+
+// The relative clamp's m is k times the mean length of the film's pixel values; an absolute m
+// takes precedence, and an empty film means no clamp (nothing to be relative to yet).
+TEST(QualitySwitches, RelativeClampScalesWithTheImage) {
+  Scene scene = load_scene("cornell");
+  EmbreeNativeAccel accel;
+  RenderSettings s = small_settings();
+  s.width = 2;
+  s.height = 1;
+  s.quality.clamp_relative = 4.0f;
+  EXPECT_TRUE(s.quality.biased());
+  EXPECT_FALSE(s.quality.without_bias().biased());
+  PcgSampler sampler(1);
+  TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
+  Film film(2, 1);
+  EXPECT_EQ(renderer.clamp_for(film), 0.0f);
+  film.add(0, 0, Color(3.0f, 4.0f, 0.0f) * 2.0f, 2);          // value length 5
+  EXPECT_NEAR(renderer.clamp_for(film), 4.0f * 5.0f, 1e-5f);  // pixel (1,0) has no samples yet
+  film.add(1, 0, Color(0.0f, 0.0f, 1.0f), 1);                 // value length 1: mean 3
+  EXPECT_NEAR(renderer.clamp_for(film), 4.0f * 3.0f, 1e-5f);
+  s.quality.clamp = 0.5f;
+  TileRenderer absolute(scene, accel, scene.cameras.at(0), s, sampler);
+  EXPECT_EQ(absolute.clamp_for(film), 0.5f);
+}
+
+// A relative clamp leaves an image without outliers alone. In the diffuse furnace (albedo 1,
+// sky 1) a bounce adds at most 1/2 per channel through light sampling (power heuristic, uniform
+// sky pdf 1/4pi against cos/pi) and at most 1 through a BSDF-sampled sky hit, so a 3-bounce
+// sample's indirect length is below 4.5 sqrt(3) = 7.8; pixel values have length >= 1 on
+// average (the sky seen directly is sqrt(3)), so k = 8 gives m >= 8: nothing is clamped.
+TEST(QualitySwitches, RelativeClampLeavesAFireflyFreeImageAlone) {
+  Scene scene = load_scene("furnace");
+  RenderSettings s = small_settings();
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  auto two_passes = [&](const RenderSettings& settings) {
+    PcgSampler sampler(settings.seed);
+    TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, sampler);
+    Film film(settings.width, settings.height);
+    renderer.render_pass(film, 0, 1);
+    renderer.render_pass(film, 1, 2);
+    return film.resolve();
+  };
+  Image plain = two_passes(s);
+  s.quality.clamp_relative = 8.0f;
+  EXPECT_EQ(equal_pixels(plain, two_passes(s)), static_cast<size_t>(s.width * s.height));
+  s.quality.clamp_relative = 0.25f;  // m below every sample's length: the image darkens
+  Image clamped = two_passes(s);
+  double plain_sum = 0, clamped_sum = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      plain_sum += luminance(plain.at(x, y));
+      clamped_sum += luminance(clamped.at(x, y));
+    }
+  EXPECT_LT(clamped_sum, 0.9 * plain_sum);
 }
 
 // Regularization widens lobes only: an all-Lambert scene (the diffuse furnace) is unchanged bit
@@ -135,35 +193,86 @@ TEST(QualitySwitches, RegularizationLeavesDiffuseScenesAlone) {
 }
 
 // 8x8 film: four pixels alternate between 0 and 10 (variance 25+), the rest are constant.
-TEST(AdaptiveSampling, ExtraSamplesGoToTheHighVariancePixels) {
+// An 8x8 film of 8 samples per pixel: a 2x2 block alternates between 0 and 10, the rest is
+// nearly constant.
+bool in_noisy_block(int x, int y) {
+  return x >= 2 && x < 4 && y >= 5 && y < 7;
+}
+
+Film noisy_block_film() {
   Film film(8, 8);
   for (int y = 0; y < 8; ++y)
-    for (int x = 0; x < 8; ++x) {
-      bool noisy = x >= 2 && x < 4 && y >= 5 && y < 7;
+    for (int x = 0; x < 8; ++x)
       for (int s = 0; s < 8; ++s) {
-        float v = noisy ? (s % 2 ? 10.0f : 0.0f) : 1.0f + 0.01f * (s % 2);
-        film.add(x, y, Color(v), 1, static_cast<double>(v) * v);
+        float v = in_noisy_block(x, y) ? (s % 2 ? 10.0f : 0.0f) : 1.0f + 0.01f * (s % 2);
+        film.add(x, y, Color(v), 1, SquareSum::of(Color(v)));
       }
-    }
-  std::vector<uint32_t> extra = allocate_adaptive_samples(film, 1000);
-  uint64_t total = 0, noisy_total = 0;
+  return film;
+}
+
+// Share of `extra` that lands where `where(x, y)` holds; checks the total against the budget.
+double share(const std::vector<uint32_t>& extra, uint64_t budget,
+             const std::function<bool(int, int)>& where) {
+  uint64_t total = 0, inside = 0;
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) {
       uint32_t k = extra[static_cast<size_t>(y) * 8 + x];
       total += k;
-      if (x >= 2 && x < 4 && y >= 5 && y < 7) noisy_total += k;
+      if (where(x, y)) inside += k;
     }
-  EXPECT_LE(total, 1000u);
-  EXPECT_GE(total, 900u);  // rounding down loses at most a pixel's fraction each
-  EXPECT_GT(noisy_total, total * 9 / 10);
+  EXPECT_LE(total, budget);
+  EXPECT_GE(total + 64, budget);  // rounding down loses less than one sample per pixel
+  return static_cast<double>(inside) / static_cast<double>(total);
+}
+
+TEST(AdaptiveSampling, ExtraSamplesGoToTheHighVariancePixels) {
+  AdaptiveOptions plain;
+  plain.filter = false;
+  plain.max_ratio = 0;
+  EXPECT_GT(share(allocate_adaptive_samples(noisy_block_film(), 1000, plain), 1000, in_noisy_block),
+            0.9);
+}
+
+// Filtered, the block's 1-pixel ring shares its estimate (8 samples could have missed the
+// feature that makes it noisy), and the rest of the image still gets almost nothing.
+TEST(AdaptiveSampling, FilteredEstimateKeepsExtraSamplesNearTheNoise) {
+  AdaptiveOptions filtered;
+  filtered.max_ratio = 0;
+  auto near_block = [](int x, int y) { return x >= 1 && x < 5 && y >= 4 && y < 8; };
+  std::vector<uint32_t> extra = allocate_adaptive_samples(noisy_block_film(), 1000, filtered);
+  EXPECT_GT(share(extra, 1000, near_block), 0.9);
+  EXPECT_LT(share(extra, 1000, in_noisy_block), 0.9);  // the ring got some
+}
+
+// The cap: no pixel ends above max_ratio x the mean count; what the noisy block cannot take
+// goes to the others, and every pixel below the cap keeps its priority order.
+TEST(AdaptiveSampling, NoPixelExceedsTheCap) {
+  Film film = noisy_block_film();
+  AdaptiveOptions capped;
+  capped.filter = false;
+  capped.max_ratio = 2.0;
+  const uint64_t budget = 1000;
+  std::vector<uint32_t> extra = allocate_adaptive_samples(film, budget, capped);
+  const double cap = 2.0 * (64.0 * 8 + budget) / 64;  // 47.25 samples
+  double block_share = share(extra, budget, in_noisy_block);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      double total = 8.0 + extra[static_cast<size_t>(y) * 8 + x];
+      EXPECT_LE(total, cap) << x << "," << y;
+      if (in_noisy_block(x, y)) {
+        EXPECT_EQ(total, std::floor(cap)) << x << "," << y;
+      }
+    }
+  EXPECT_LT(block_share, 0.2);  // 4 x 39 of ~1000
 }
 
 TEST(AdaptiveSampling, VarianceOfTheMeanMatchesTheSampleFormula) {
   Film film(1, 1);
   const float v[] = {1, 2, 4, 7};
-  for (float x : v) film.add(0, 0, Color(x), 1, static_cast<double>(x) * x);
-  // mean 3.5, sample variance ((2.5^2 + 1.5^2 + 0.5^2 + 3.5^2) / 3) = 7, / n = 1.75
-  EXPECT_NEAR(film.variance_of_mean(0, 0), 1.75, 1e-5);
+  for (float x : v) film.add(0, 0, Color(x, 2 * x, 0), 1, SquareSum::of(Color(x, 2 * x, 0)));
+  // red: mean 3.5, sample variance ((2.5^2 + 1.5^2 + 0.5^2 + 3.5^2) / 3) = 7; green 4 x 7 = 28;
+  // blue 0: the mean over channels is 35 / 3, over n = 4 samples 35 / 12
+  EXPECT_NEAR(film.variance_of_mean(0, 0), 35.0 / 12.0, 1e-5);
 }
 
 // A budget far below one pass still adds exactly one sample per pixel per frame.

@@ -53,5 +53,37 @@ TEST(FrameBench, ARefusedBuildIsAnInfinitelySlowFrameNotACrash) {
   EXPECT_TRUE(bench.run(BvhConfig{}, scene.cameras[0]).ok);  // and the next build works
 }
 
+// The tuner measures work sizes frame by frame: switching them must not rebuild the tree (nor
+// the integrator), and must not change the image, only the time.
+TEST(FrameBench, WorkSizesChangeWithoutRebuildAndGiveTheSameFilm) {
+  Scene scene = load_scene("cornell");
+  FrameBench tiles(scene, tiny(), 2, Objective::kRender);
+  FrameBench waves(scene, tiny(), 2, Objective::kRender);
+  BvhConfig config;
+  EXPECT_TRUE(tiles.run(config, WorkSizes{false, 8, 4096}, scene.cameras[0]).rebuilt);
+  FrameCost first = waves.run(config, WorkSizes{true, 32, 4096}, scene.cameras[0]);
+  EXPECT_TRUE(first.rebuilt);
+  const Image expected = tiles.film().resolve();
+  const Image wave = waves.film().resolve();
+  ASSERT_EQ(expected.width(), wave.width());
+  for (int y = 0; y < expected.height(); ++y)
+    for (int x = 0; x < expected.width(); ++x)
+      ASSERT_EQ(expected.at(x, y), wave.at(x, y)) << "pixel " << x << "," << y;
+
+  for (WorkSizes w : {WorkSizes{true, 32, 7}, WorkSizes{false, 64, 4096},
+                      WorkSizes{false, 16, 4096}, WorkSizes{true, 32, 65536}}) {
+    FrameCost c = tiles.run(config, w, scene.cameras[0]);
+    EXPECT_TRUE(c.ok) << w.to_string();
+    EXPECT_FALSE(c.rebuilt) << w.to_string();
+    EXPECT_EQ(c.build_ms, 0.0) << w.to_string();
+    size_t samples = 0;
+    for (int y = 0; y < tiny().height; ++y)
+      for (int x = 0; x < tiny().width; ++x) samples += tiles.film().samples(x, y);
+    EXPECT_EQ(samples, static_cast<size_t>(2 * tiny().width * tiny().height)) << w.to_string();
+  }
+  // The two-argument run goes back to the settings' scheduler, still without a rebuild.
+  EXPECT_FALSE(tiles.run(config, scene.cameras[0]).rebuilt);
+}
+
 }  // namespace
 }  // namespace tuneray
