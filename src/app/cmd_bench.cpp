@@ -66,6 +66,10 @@ CommandAction add_bench_command(CLI::App& app) {
   q->add_option("--frames", quality->frames, "Frames accumulated")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  q->add_option("--repeats", quality->repeats,
+                "Runs per configuration, interleaved, each with its own seed (medians reported)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   q->add_option("--max-bounces", quality->max_bounces, "Path length")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();

@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -125,6 +126,66 @@ double measure_ms_per_spp(const Scene& scene, const Accel& accel, const CameraDe
   return ms[1];
 }
 
+// One frame-budget run of a configuration: cumulative time, spp and RMSE after each frame.
+struct FrameRun {
+  std::vector<double> time_ms, spp, rmse;
+  double mrays_per_s = 0;
+};
+
+FrameRun run_frames(const Scene& scene, const Accel& accel, const CameraDesc& camera,
+                    const RenderSettings& settings, double frame_ms, int frames, uint64_t seed,
+                    const Image& truth) {
+  std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, seed);
+  TileRenderer renderer(scene, accel, camera, settings, *sampler);
+  Film film(settings.width, settings.height);
+  FrameBudgetRenderer budget(renderer, frame_ms);
+  FrameRun run;
+  double t = 0, spp = 0;
+  PassStats total;
+  for (int f = 0; f < frames; ++f) {
+    FrameResult frame = budget.render_frame(film);
+    total.accumulate(frame.stats);
+    t += frame.ms;
+    spp += frame.spp;
+    run.time_ms.push_back(t);
+    run.spp.push_back(spp);
+    run.rmse.push_back(rmse(film.resolve(), truth));
+  }
+  run.mrays_per_s = total.mrays_per_s();
+  return run;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+// Medians over the repeats, frame by frame.
+ConfigResult summarize(const std::string& name, const std::vector<FrameRun>& runs) {
+  ConfigResult r;
+  r.name = name;
+  const size_t frames = runs.front().rmse.size();
+  auto per_frame = [&](std::vector<double> FrameRun::*field, size_t f) {
+    std::vector<double> v;
+    for (const FrameRun& run : runs) v.push_back((run.*field)[f]);
+    return median(v);
+  };
+  for (size_t f = 0; f < frames; ++f) {
+    r.time_ms.push_back(per_frame(&FrameRun::time_ms, f));
+    r.spp.push_back(per_frame(&FrameRun::spp, f));
+    r.rmse.push_back(per_frame(&FrameRun::rmse, f));
+  }
+  std::vector<double> ms_per_spp, mrays;
+  for (const FrameRun& run : runs) {
+    ms_per_spp.push_back(run.time_ms.back() / std::max(run.spp.back(), 1e-9));
+    mrays.push_back(run.mrays_per_s);
+  }
+  r.ms_per_spp = median(ms_per_spp);
+  r.mrays_per_s = median(mrays);
+  return r;
+}
+
 void print_row(const ConfigResult& r, double base_rmse) {
   std::string ratio = base_rmse > 0 ? fmt::format("{:.3f}", r.rmse.back() / base_rmse) : "-";
   fmt::print(
@@ -174,9 +235,12 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
              "isect", "shade", "shadow", "Mray/s", "spp", "RMSE", "vs base", "bias");
   std::fflush(stdout);
 
-  results.clear();
-  double base_rmse = 0;
-  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  struct Chosen {
+    std::string name;
+    RenderSettings settings;
+    const Scene* scene;
+  };
+  std::vector<Chosen> chosen;
   for (const Config& config : configurations()) {
     if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), config.name) == a.only.end())
       continue;
@@ -184,28 +248,29 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
     Switches switches{s.quality, false};
     config.apply(switches, a);
     s.quality = switches.quality;
-    const Scene& used = switches.one_texel ? collapsed : scene;
-    ConfigResult r;
-    r.name = config.name;
-    {
-      std::unique_ptr<Sampler> sampler = make_sampler(s.quality.sampler, 1);
-      TileRenderer renderer(used, *accel, camera, s, *sampler);
-      Film film(width, height);
-      FrameBudgetRenderer budget(renderer, frame_ms);
-      double t = 0, spp = 0;
-      PassStats total;
-      for (int f = 0; f < a.frames; ++f) {
-        FrameResult frame = budget.render_frame(film);
-        total.accumulate(frame.stats);
-        t += frame.ms;
-        spp += frame.spp;
-        r.time_ms.push_back(t);
-        r.spp.push_back(spp);
-        r.rmse.push_back(rmse(film.resolve(), truth));
-      }
-      r.ms_per_spp = t / std::max(spp, 1e-9);
-      r.mrays_per_s = total.mrays_per_s();
+    chosen.push_back({config.name, s, switches.one_texel ? &collapsed : &scene});
+  }
+
+  // Repeats run round-robin over the configurations, so a change in the machine's load
+  // affects every row alike; each repeat has its own seed.
+  std::vector<std::vector<FrameRun>> runs(chosen.size());
+  for (int rep = 0; rep < a.repeats; ++rep) {
+    for (size_t i = 0; i < chosen.size(); ++i)
+      runs[i].push_back(run_frames(*chosen[i].scene, *accel, camera, chosen[i].settings, frame_ms,
+                                   a.frames, 1 + 1000 * static_cast<uint64_t>(rep), truth));
+    if (a.repeats > 1) {
+      fmt::print(stderr, "{}: repeat {}/{} done\n", scene.name, rep + 1, a.repeats);
+      std::fflush(stderr);
     }
+  }
+
+  results.clear();
+  double base_rmse = 0;
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < chosen.size(); ++i) {
+    const RenderSettings& s = chosen[i].settings;
+    const Scene& used = *chosen[i].scene;
+    ConfigResult r = summarize(chosen[i].name, runs[i]);
     {  // phase times from a separate profiled pass (the clocks cost a little)
       RenderSettings p = s;
       p.quality.profile_phases = true;
@@ -229,9 +294,11 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
     if (r.name == "baseline") base_rmse = r.rmse.back();
     print_row(r, base_rmse);
     plot_data << "\"" << scene.name << " " << r.name << "\"\n";
-    for (size_t i = 0; i < r.time_ms.size(); ++i)
-      plot_data << r.time_ms[i] << " " << r.rmse[i] << "\n";
+    for (size_t f = 0; f < r.time_ms.size(); ++f)
+      plot_data << r.time_ms[f] << " " << r.rmse[f] << "\n";
     plot_data << "\n\n";
+    std::vector<double> final_rmse;
+    for (const FrameRun& run : runs[i]) final_rmse.push_back(run.rmse.back());
     rows.push_back({{"config", r.name},
                     {"ms_per_spp", r.ms_per_spp},
                     {"intersect_ms_per_spp", r.intersect},
@@ -241,6 +308,7 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
                     {"spp", r.spp},
                     {"time_ms", r.time_ms},
                     {"rmse", r.rmse},
+                    {"rmse_repeats", final_rmse},
                     {"rmse_vs_baseline", base_rmse > 0 ? r.rmse.back() / base_rmse : 0.0},
                     {"bias", r.bias}});
     results.push_back(r);
@@ -276,18 +344,76 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
           {"sweep", sweep}};
 }
 
-void write_plot_script(const std::string& prefix, const std::vector<std::string>& titles) {
+// One panel per scene (RMSE vs time, log y), a line per configuration: the data file's block
+// index and the configuration's name.
+struct PlotScene {
+  std::string name;
+  std::vector<std::pair<int, std::string>> lines;
+};
+
+void write_plot_script(const std::string& prefix, const std::vector<PlotScene>& scenes) {
   std::ofstream gp(prefix + ".gp");
   std::string data = std::filesystem::path(prefix + ".dat").filename().string();
-  gp << "# gnuplot " << std::filesystem::path(prefix + ".gp").filename().string() << "\n"
-     << "set terminal pngcairo size 1000,640\nset output '"
-     << std::filesystem::path(prefix + ".png").filename().string() << "'\n"
-     << "set xlabel 'time (ms)'\nset ylabel 'RMSE'\nset logscale y\nset key outside\n"
-     << "plot ";
-  for (size_t i = 0; i < titles.size(); ++i)
-    gp << (i ? ", \\\n     " : "") << "'" << data << "' index " << i
-       << " using 1:2 with linespoints title '" << titles[i] << "'";
-  gp << "\n";
+  const int cols = scenes.size() > 1 ? 2 : 1;
+  const int rows = static_cast<int>((scenes.size() + cols - 1) / cols);
+  gp << "# gnuplot " << std::filesystem::path(prefix + ".gp").filename().string()
+     << ": RMSE against the ground truth vs time, one panel per scene\n"
+     << "set terminal pngcairo size " << 700 * cols << "," << 420 * rows << " font ',9'\n"
+     << "set output '" << std::filesystem::path(prefix + ".png").filename().string() << "'\n"
+     << "set multiplot layout " << rows << "," << cols << "\n"
+     << "set xlabel 'time (ms)'\nset ylabel 'RMSE'\nset logscale y\nset key outside right\n";
+  for (const PlotScene& scene : scenes) {
+    gp << "set title '" << scene.name << "'\nplot ";
+    for (size_t i = 0; i < scene.lines.size(); ++i)
+      gp << (i ? ", \\\n     " : "") << "'" << data << "' index " << scene.lines[i].first
+         << " using 1:2 with linespoints title '" << scene.lines[i].second << "'";
+    gp << "\n";
+  }
+  gp << "unset multiplot\n";
+}
+
+// Markdown: one row per scene, one column per configuration, `value(config)` / the baseline's;
+// a last row with the geometric mean over scenes.
+void print_ratio_matrix(const std::string& title, const nlohmann::ordered_json& scenes,
+                        const char* field) {
+  std::vector<std::string> names;
+  for (const auto& scene : scenes)
+    for (const auto& c : scene["configs"]) {
+      std::string n = c["config"];
+      if (n != "baseline" && std::find(names.begin(), names.end(), n) == names.end())
+        names.push_back(n);
+    }
+  if (names.empty()) return;
+  fmt::print("\n{}\n\n| scene |", title);
+  for (const std::string& n : names) fmt::print(" {} |", n);
+  fmt::print("\n|---|");
+  for (size_t i = 0; i < names.size(); ++i) fmt::print("---|");
+  fmt::print("\n");
+  std::vector<double> log_sum(names.size(), 0.0);
+  std::vector<int> count(names.size(), 0);
+  for (const auto& scene : scenes) {
+    double base = 0;
+    for (const auto& c : scene["configs"])
+      if (c["config"] == "baseline")
+        base = c[field].is_array() ? c[field].back().get<double>() : c[field].get<double>();
+    fmt::print("| {} |", scene["name"].get<std::string>());
+    for (size_t i = 0; i < names.size(); ++i) {
+      std::string cell = " - |";
+      for (const auto& c : scene["configs"]) {
+        if (c["config"] != names[i] || !(base > 0)) continue;
+        double v = c[field].is_array() ? c[field].back().get<double>() : c[field].get<double>();
+        cell = fmt::format(" {:.2f} |", v / base);
+        log_sum[i] += std::log(v / base);
+        ++count[i];
+      }
+      fmt::print("{}", cell);
+    }
+    fmt::print("\n");
+  }
+  fmt::print("| geo-mean |");
+  for (size_t i = 0; i < names.size(); ++i)
+    fmt::print("{}", count[i] ? fmt::format(" {:.2f} |", std::exp(log_sum[i] / count[i])) : " - |");
+  fmt::print("\n");
 }
 
 }  // namespace
@@ -312,6 +438,7 @@ int run_bench_quality(const BenchQualityArgs& a) {
   nlohmann::ordered_json out = {{"size", a.size},
                                 {"frame_ms", a.frame_ms},
                                 {"frames", a.frames},
+                                {"repeats", a.repeats},
                                 {"target_spp", a.target_spp},
                                 {"max_bounces", a.max_bounces},
                                 {"clamp", a.clamp},
@@ -326,23 +453,30 @@ int run_bench_quality(const BenchQualityArgs& a) {
     if (!parent.empty()) std::filesystem::create_directories(parent);
     plot_data.open(a.plot + ".dat");
   }
-  std::ostringstream sink;
-  std::vector<std::string> titles;
-  for (const std::string& spec : scenes) {
-    std::vector<ConfigResult> results;
-    std::ostringstream data;
-    out["scenes"].push_back(run_scene(a, spec, results, data));
-    if (plot_data.is_open()) plot_data << data.str();
-    for (const ConfigResult& r : results)
-      titles.push_back(out["scenes"].back()["name"].get<std::string>() + " " + r.name);
-  }
-  if (!a.plot.empty()) write_plot_script(a.plot, titles);
-  if (!a.json.empty()) {
+  auto write_json = [&] {  // after every scene, so an interrupted run keeps what it measured
+    if (a.json.empty()) return;
     std::filesystem::path parent = std::filesystem::path(a.json).parent_path();
     if (!parent.empty()) std::filesystem::create_directories(parent);
     std::ofstream f(a.json);
     if (!(f << out.dump(2) << "\n")) throw std::runtime_error("cannot write " + a.json);
+  };
+  std::vector<PlotScene> panels;
+  int block = 0;
+  for (const std::string& spec : scenes) {
+    std::vector<ConfigResult> results;
+    std::ostringstream data;
+    out["scenes"].push_back(run_scene(a, spec, results, data));
+    if (plot_data.is_open()) plot_data << data.str() << std::flush;
+    PlotScene panel{out["scenes"].back()["name"].get<std::string>(), {}};
+    for (const ConfigResult& r : results) panel.lines.emplace_back(block++, r.name);
+    panels.push_back(panel);
+    write_json();
+    fmt::print("\n");
   }
+  if (!a.plot.empty()) write_plot_script(a.plot, panels);
+  print_ratio_matrix("RMSE at equal time / baseline's (median over repeats):", out["scenes"],
+                     "rmse");
+  print_ratio_matrix("Time per spp / baseline's:", out["scenes"], "ms_per_spp");
   return 0;
 }
 

@@ -13,6 +13,7 @@ struct BenchQualityArgs {
   std::string size = "640x360";
   double frame_ms = 250;
   int frames = 8;
+  int repeats = 1;        // runs per configuration (seeds differ); the table shows medians
   double target_spp = 0;  // > 0: frame_ms = target_spp x the baseline's measured ms per spp
   int max_bounces = 3;
   std::string truth_dir = "out/truth";

@@ -46,10 +46,14 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film) {
   FrameResult frame;
   bool first_pass = true;
   for (;;) {
-    double fit = ms_per_spp_ > 0 ? (frame_ms_ - elapsed()) / ms_per_spp_ : 1.0;
+    // A pass costs a fixed overhead (adaptive bookkeeping, thread start-up) plus its samples;
+    // folding the overhead into the cost per sample would make small passes look expensive
+    // and plan ever smaller ones.
+    double left = frame_ms_ - elapsed() - overhead_ms_;
+    double fit = ms_per_spp_ > 0 ? left / ms_per_spp_ : 1.0;
     // Adaptive passes can be a fraction of a sample per pixel, uniform ones cannot. Every
     // frame gets at least one pass.
-    double smallest = adaptive_ready() ? 0.05 : 1.0;
+    double smallest = adaptive_ready() ? kSmallestAdaptivePass : 1.0;
     if (fit < smallest) {
       if (!first_pass) break;
       fit = smallest < 1.0 ? std::max(fit, smallest) : 1.0;
@@ -58,8 +62,12 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film) {
     PassStats pass = add_samples(film, std::min(fit, 1e6));
     double pass_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    double per_spp = pass_ms * pixels / std::max<double>(1.0, static_cast<double>(pass.samples));
+    double samples = std::max(1.0, static_cast<double>(pass.samples));
+    double per_spp = pass.render_ms * pixels / samples;
+    double overhead = std::max(0.0, pass_ms - pass.render_ms);
     ms_per_spp_ = ms_per_spp_ > 0 ? 0.5 * ms_per_spp_ + 0.5 * per_spp : per_spp;
+    overhead_ms_ = passes_ > 0 ? 0.5 * overhead_ms_ + 0.5 * overhead : overhead;
+    ++passes_;
     frame.stats.accumulate(pass);
     first_pass = false;
   }

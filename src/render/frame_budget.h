@@ -31,9 +31,14 @@ class FrameBudgetRenderer {
   // least 1); adaptive passes place round(spp x pixels) samples where the error is highest.
   PassStats add_samples(Film& film, double spp);
 
+  // Below this many samples per pixel an adaptive pass is not worth its bookkeeping.
+  static constexpr double kSmallestAdaptivePass = 0.1;
+
   const TileRenderer& renderer_;
   double frame_ms_;
-  double ms_per_spp_ = 0;     // running estimate; 0 = not measured yet
+  double ms_per_spp_ = 0;   // running estimate of rendering time per spp; 0 = not measured yet
+  double overhead_ms_ = 0;  // running estimate of a pass's time outside rendering
+  int passes_ = 0;
   uint32_t next_sample_ = 0;  // uniform mode: sample index of the next pass
   uint32_t min_samples_ = 0;  // adaptive mode: samples every pixel has
 };

@@ -69,10 +69,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
                    EnvironmentOptions{settings.quality.sky_rgba, settings.quality.lowres_sky}),
       lights_(scene, environment_) {}
 
-Color PathIntegrator::environment_radiance(Vec3f dir, int depth) const {
-  // Low-resolution sky for every ray but the camera's.
-  return settings_.quality.lowres_sky && depth > 0 ? environment_.eval_lowres(dir)
-                                                   : environment_.eval(dir);
+Color PathIntegrator::environment_radiance(Vec3f dir, bool specular_chain) const {
+  // Low-resolution sky after a rough bounce, which blurs it anyway; the sky the camera sees
+  // directly or in a mirror or through glass stays sharp.
+  return settings_.quality.lowres_sky && !specular_chain ? environment_.eval_lowres(dir)
+                                                         : environment_.eval(dir);
 }
 
 PathState PathIntegrator::start(const Ray& camera_ray) {
@@ -126,7 +127,7 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
   const Ray& ray = st.ray;
   if (!found) {
     if (environment_.active()) {
-      Color le = environment_radiance(ray.dir, st.depth);
+      Color le = environment_radiance(ray.dir, st.specular_chain);
       float w = 1.0f;
       if (!st.previous_was_delta) {
         if (settings_.strategy == LightStrategy::kLightOnly)
@@ -134,7 +135,7 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
         else if (settings_.strategy == LightStrategy::kMis)
           w = power_heuristic(st.previous_pdf, lights_.pdf_environment(ray.dir));
       }
-      (st.depth == 0 ? st.L_camera : st.L) += st.beta * le * w;
+      (st.specular_chain ? st.L_camera : st.L) += st.beta * le * w;
     }
     st.alive = false;
     return;
@@ -153,7 +154,7 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
             st.previous_pdf,
             lights_.pdf_triangle(si.prim, st.previous_position, si.position, si.geometric_normal));
     }
-    (st.depth == 0 ? st.L_camera : st.L) += st.beta * le * w;
+    (st.specular_chain ? st.L_camera : st.L) += st.beta * le * w;
   }
   if (st.depth >= settings_.max_bounces) {
     st.alive = false;
@@ -201,6 +202,7 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
   st.beta *= bs.weight;
   if (!(max_component(st.beta) > 0)) return;
   st.previous_was_delta = bs.is_delta;
+  st.specular_chain = st.specular_chain && bs.is_delta;
   st.previous_pdf = bs.pdf;
   st.previous_position = si.position;
 

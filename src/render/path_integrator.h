@@ -31,13 +31,16 @@ struct PathCounters {
 struct PathState {
   Ray ray;
   Color L{0.0f};
-  Color L_camera{0.0f};  // emission seen directly by the camera ray (never clamped)
+  // Emission the camera sees directly or through specular (delta) vertices only, e.g. a lamp
+  // reflected in water: part of the visible scene, not a firefly, so never clamped.
+  Color L_camera{0.0f};
   Color beta{1.0f};
   Vec3f previous_position;
   float previous_pdf = 0;
   float max_roughness = 0;  // largest roughness seen so far (path-space regularization)
   int depth = 0;            // index of the vertex `ray` will hit (0 = camera ray)
   bool previous_was_delta = true;
+  bool specular_chain = true;  // every vertex so far was specular (the camera ray counts)
   bool alive = true;
 };
 
@@ -72,7 +75,7 @@ class PathIntegrator {
   const RenderSettings& settings() const { return settings_; }
 
  private:
-  Color environment_radiance(Vec3f dir, int depth) const;
+  Color environment_radiance(Vec3f dir, bool specular_chain) const;
 
   const Scene& scene_;
   const Accel& accel_;

@@ -12,7 +12,9 @@
 #include "render/frame_budget.h"
 #include "render/tile_renderer.h"
 #include "render_helpers.h"
+#include "scene/builtins.h"
 #include "scene/load.h"
+#include "scene/mesh_data.h"
 
 namespace tuneray {
 namespace {
@@ -177,6 +179,29 @@ TEST(QualitySwitches, RelativeClampLeavesAFireflyFreeImageAlone) {
       clamped_sum += luminance(clamped.at(x, y));
     }
   EXPECT_LT(clamped_sum, 0.9 * plain_sum);
+}
+
+// A lamp seen in a mirror is part of the visible scene, not a firefly: the clamp leaves
+// emission reached through specular vertices alone, however low m is. The camera looks at a
+// mirror that faces it; behind the camera hangs a bright emitter that the mirror shows.
+TEST(QualitySwitches, ClampSparesEmissionSeenThroughMirrors) {
+  Scene scene;
+  scene.name = "mirror-lamp";
+  uint32_t mirror = add_material(
+      scene, {.name = "mirror", .type = MaterialType::kMirror, .specular_color = Color(1.0f)});
+  uint32_t lamp =
+      add_material(scene, {.name = "lamp", .base_color = Color(0.0f), .emission = Color(50.0f)});
+  add_mesh(scene, "mirror", make_quad({-4, -4, 0}, {8, 0, 0}, {0, 8, 0}, {0, 0, 1}), mirror);
+  add_mesh(scene, "lamp", make_quad({-20, -20, 6}, {40, 0, 0}, {0, 40, 0}, {0, 0, -1}), lamp);
+  scene.cameras.push_back(look_at("front", Vec3f(0, 0, 3), Vec3f(0, 0, 0), 30.0f));
+  RenderSettings s = small_settings();
+  s.width = 8;
+  s.height = 6;
+  Image plain = render(scene, s, 2);
+  s.quality.clamp = 0.5f;
+  Image clamped = render(scene, s, 2);
+  ASSERT_NEAR(plain.at(4, 3).x, 50.0f, 1e-3f);  // the lamp, through the mirror
+  EXPECT_EQ(equal_pixels(plain, clamped), static_cast<size_t>(s.width * s.height));
 }
 
 // Regularization widens lobes only: an all-Lambert scene (the diffuse furnace) is unchanged bit
