@@ -45,6 +45,7 @@ class Film {
     square_sum_[i].b += squares.b;
   }
   uint32_t samples(int x, int y) const { return samples_[static_cast<size_t>(y) * width() + x]; }
+  const Color& sum(int x, int y) const { return sum_.at(x, y); }  // of the pixel's samples
 
   // Estimated variance of the pixel's mean, averaged over r, g and b (sample variance / n); 0
   // below 2 samples.

@@ -26,9 +26,10 @@ struct QualityOptions {
   bool lowres_sky = false;  // biased: 8x8-averaged sky for rays after the first bounce
   bool regularize = false;  // biased: roughness never below the path's largest so far
   float clamp = 0;          // biased: max length of a path contribution (0 = off)
-  // Biased: clamp relative to the image, m = clamp_relative x the mean length of the pixel
-  // values accumulated so far (0 = off; the first pass of a film is unclamped). One setting
-  // then fits scenes whose brightness differs by orders of magnitude. `clamp` wins if both set.
+  // Biased: clamp relative to the image so far, per pixel m = clamp_relative x max(its 3x3
+  // neighbourhood's mean pixel length, the image's) (render/firefly_clamp.h; 0 = off; the
+  // first pass of a film is unclamped). One setting then fits scenes whose brightness differs
+  // by orders of magnitude. `clamp` wins if both are set.
   float clamp_relative = 0;
   bool adaptive = false;        // extra samples where the estimated error is highest
   int adaptive_min_spp = 4;     // uniform samples per pixel before the variance is trusted

@@ -92,18 +92,18 @@ PassStats TileRenderer::render_extra(Film& film, const std::vector<uint32_t>& ex
   return run(film, work, {});
 }
 
-float TileRenderer::clamp_for(const Film& film) const {
+ClampThresholds TileRenderer::clamp_for(const Film& film) const {
   const QualityOptions& q = settings_.quality;
-  if (q.clamp > 0) return q.clamp;
-  if (q.clamp_relative > 0) return static_cast<float>(q.clamp_relative * film.mean_value_length());
-  return 0.0f;
+  if (q.clamp > 0) return ClampThresholds::uniform(q.clamp);
+  if (q.clamp_relative > 0) return ClampThresholds::relative(film, q.clamp_relative);
+  return {};
 }
 
 PassStats TileRenderer::run(Film& film, const PixelWork& work,
                             const std::function<void()>& on_tile_done) const {
   // Resolved once per pass, before any pixel of it is written, so the result does not depend
   // on the order in which threads finish.
-  const float clamp = clamp_for(film);
+  const ClampThresholds clamp = clamp_for(film);
   if (settings_.quality.wavefront) {
     PassStats stats = run_wavefront(film, work, clamp);
     if (on_tile_done)
@@ -113,7 +113,7 @@ PassStats TileRenderer::run(Film& film, const PixelWork& work,
   return run_tiles(film, work, clamp, on_tile_done);
 }
 
-PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, float clamp,
+PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
                                   const std::function<void()>& on_tile_done) const {
   const int ts = std::max(1, settings_.tile_size);
   const int tiles_x = (settings_.width + ts - 1) / ts;
@@ -143,7 +143,7 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, float clamp
                                             first + s);
                 std::array<float, 4> u = sampler->next4();
                 Ray ray = camera_.generate_ray({x + u[0], y + u[1]}, {u[2], u[3]});
-                Color L = integrator_.radiance(ray, *sampler, local, clamp);
+                Color L = integrator_.radiance(ray, *sampler, local, clamp.at(pixel));
                 sum += L;
                 squares.add(L);
               }
@@ -160,7 +160,8 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, float clamp
   return combine(counters, ms, samples.combine(std::plus<uint64_t>()));
 }
 
-PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work, float clamp) const {
+PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
+                                      const ClampThresholds& clamp) const {
   const int width = settings_.width;
   const size_t pixel_count = static_cast<size_t>(width) * settings_.height;
   const size_t batch = static_cast<size_t>(std::max(1, settings_.quality.batch_size));
@@ -264,7 +265,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work, float c
             Color sum(0.0f);
             SquareSum squares;
             for (uint32_t s = 0; s < count[p]; ++s, ++k) {
-              Color L = integrator_.finish(b.states[k], local, clamp);
+              Color L = integrator_.finish(b.states[k], local, clamp.at(p));
               sum += L;
               squares.add(L);
             }

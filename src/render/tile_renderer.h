@@ -14,6 +14,7 @@
 #include "accel/accel.h"
 #include "render/camera.h"
 #include "render/film.h"
+#include "render/firefly_clamp.h"
 #include "render/path_integrator.h"
 #include "render/render_settings.h"
 #include "render/sampler.h"
@@ -63,9 +64,9 @@ class TileRenderer {
     settings_.quality.batch_size = batch_size;
   }
 
-  // The firefly clamp m of the next pass into `film`: quality.clamp if set, else
-  // quality.clamp_relative x film.mean_value_length() (0 = no clamp, e.g. on an empty film).
-  float clamp_for(const Film& film) const;
+  // The firefly clamp of the next pass into `film`: quality.clamp everywhere if set, else
+  // quality.clamp_relative thresholds from the film (none on an empty film), else none.
+  ClampThresholds clamp_for(const Film& film) const;
 
   int tile_count() const;
   const PathIntegrator& integrator() const { return integrator_; }
@@ -77,9 +78,9 @@ class TileRenderer {
     std::function<uint32_t(size_t)> first, count;
   };
   PassStats run(Film& film, const PixelWork& work, const std::function<void()>& on_tile_done) const;
-  PassStats run_tiles(Film& film, const PixelWork& work, float clamp,
+  PassStats run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
                       const std::function<void()>& on_tile_done) const;
-  PassStats run_wavefront(Film& film, const PixelWork& work, float clamp) const;
+  PassStats run_wavefront(Film& film, const PixelWork& work, const ClampThresholds& clamp) const;
 
   const Scene& scene_;
   RenderSettings settings_;

@@ -23,6 +23,7 @@ constexpr Builtin kBuiltins[] = {
     {"mixed", make_mixed_scene},
     {"furnace", make_furnace_scene},
     {"furnace_ggx", make_furnace_ggx_scene},
+    {"sky", make_sky_scene},
 };
 
 std::string lower_extension(const std::string& path) {

@@ -124,35 +124,42 @@ TEST(QualitySwitches, ClampLimitsTheLengthOfTheIndirectPart) {
   EXPECT_EQ(integrator.finish(st, counters, 2.0f), st.L_camera + st.L);
 }
 
-// The relative clamp's m is k times the mean length of the film's pixel values; an absolute m
-// takes precedence, and an empty film means no clamp (nothing to be relative to yet).
-TEST(QualitySwitches, RelativeClampScalesWithTheImage) {
+// The relative clamp's m_i is k times the larger of the mean pixel-value length over i's 3x3
+// neighbourhood and over the image (pixels without samples do not count); an absolute m takes
+// precedence everywhere, and an empty film means no clamp (nothing to be relative to yet).
+TEST(QualitySwitches, RelativeClampFollowsTheNeighbourhood) {
   Scene scene = load_scene("cornell");
   EmbreeNativeAccel accel;
   RenderSettings s = small_settings();
-  s.width = 2;
+  s.width = 4;
   s.height = 1;
-  s.quality.clamp_relative = 4.0f;
+  s.quality.clamp_relative = 2.0f;
   EXPECT_TRUE(s.quality.biased());
   EXPECT_FALSE(s.quality.without_bias().biased());
   PcgSampler sampler(1);
   TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
-  Film film(2, 1);
-  EXPECT_EQ(renderer.clamp_for(film), 0.0f);
-  film.add(0, 0, Color(3.0f, 4.0f, 0.0f) * 2.0f, 2);          // value length 5
-  EXPECT_NEAR(renderer.clamp_for(film), 4.0f * 5.0f, 1e-5f);  // pixel (1,0) has no samples yet
-  film.add(1, 0, Color(0.0f, 0.0f, 1.0f), 1);                 // value length 1: mean 3
-  EXPECT_NEAR(renderer.clamp_for(film), 4.0f * 3.0f, 1e-5f);
+  Film film(4, 1);
+  EXPECT_FALSE(renderer.clamp_for(film).active());
+  film.add(0, 0, Color(6.0f, 8.0f, 0.0f) * 2.0f, 2);  // length 10
+  film.add(1, 0, Color(0.0f, 1.0f, 0.0f), 1);         // length 1
+  film.add(2, 0, Color(1.0f, 0.0f, 0.0f) * 3.0f, 3);  // length 1; pixel 3 has no samples
+  // Image mean 4. Neighbourhoods: {10, 1} -> 5.5, {10, 1, 1} -> 4, {1, 1} -> 1, {1} -> 1.
+  ClampThresholds t = renderer.clamp_for(film);
+  EXPECT_NEAR(t.at(0), 2.0f * 5.5f, 1e-5f);
+  EXPECT_NEAR(t.at(1), 2.0f * 4.0f, 1e-5f);
+  EXPECT_NEAR(t.at(2), 2.0f * 4.0f, 1e-5f);  // the image mean is the floor
+  EXPECT_NEAR(t.at(3), 2.0f * 4.0f, 1e-5f);
   s.quality.clamp = 0.5f;
   TileRenderer absolute(scene, accel, scene.cameras.at(0), s, sampler);
-  EXPECT_EQ(absolute.clamp_for(film), 0.5f);
+  for (size_t i = 0; i < 4; ++i) EXPECT_EQ(absolute.clamp_for(film).at(i), 0.5f);
 }
 
 // A relative clamp leaves an image without outliers alone. In the diffuse furnace (albedo 1,
 // sky 1) a bounce adds at most 1/2 per channel through light sampling (power heuristic, uniform
 // sky pdf 1/4pi against cos/pi) and at most 1 through a BSDF-sampled sky hit, so a 3-bounce
 // sample's indirect length is below 4.5 sqrt(3) = 7.8; pixel values have length >= 1 on
-// average (the sky seen directly is sqrt(3)), so k = 8 gives m >= 8: nothing is clamped.
+// average (the sky seen directly is sqrt(3)), so k = 8 gives every m_i >= 8 (the image mean
+// is the floor): nothing is clamped.
 TEST(QualitySwitches, RelativeClampLeavesAFireflyFreeImageAlone) {
   Scene scene = load_scene("furnace");
   RenderSettings s = small_settings();

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "scene/load.h"
 #include "scene/normals.h"
@@ -52,12 +54,12 @@ TEST_P(Builtins, HasCameraPathLightAndNoNotes) {
 INSTANTIATE_TEST_SUITE_P(All, Builtins,
                          ::testing::Values(Expected{"cornell", 36}, Expected{"voxels", 25644},
                                            Expected{"mixed", 100016}, Expected{"furnace", 20480},
-                                           Expected{"furnace_ggx", 20480}),
+                                           Expected{"furnace_ggx", 20480}, Expected{"sky", 26626}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(BuiltinNames, ListsEveryBuiltinAndCornellFirst) {
   std::vector<std::string> names = builtin_scene_names();
-  ASSERT_EQ(names.size(), 5u);
+  ASSERT_EQ(names.size(), 6u);
   EXPECT_EQ(names[0], "cornell");
 }
 
@@ -119,6 +121,40 @@ TEST(BuiltinMixed, TinyAndHugeTriangles) {
   EXPECT_GT(s.emissive_triangle_count(), 0u);
   // Nothing sinks into the floor.
   for (Vec3f p : s.positions) ASSERT_GE(p.y, 0.0f);
+}
+
+// The environment-map scene: an HDR equirectangular sky whose sun is the brightest thing in it,
+// seamless at u = 0 (the clouds' noise wraps), and one object of every material type.
+TEST(BuiltinSky, HdrSkyWithASunAndEveryMaterialType) {
+  Scene s = load_scene("sky");
+  const Image& map = s.environment.map;
+  ASSERT_EQ(map.width(), 1024);
+  ASSERT_EQ(map.height(), 512);
+  float brightest = 0, sky_mean = 0;
+  for (int y = 0; y < map.height(); ++y)
+    for (int x = 0; x < map.width(); ++x) {
+      Color c = map.at(x, y);
+      ASSERT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+      ASSERT_GE(min_component(c), 0.0f);
+      brightest = std::max(brightest, max_component(c));
+      sky_mean += luminance(c) / static_cast<float>(map.width() * map.height());
+    }
+  EXPECT_GT(brightest, 100 * sky_mean);  // a sun: importance sampling has something to find
+  // Across the seam the sky changes no more than between any two neighbouring columns.
+  auto difference = [](Color a, Color b) {
+    return std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)});
+  };
+  float seam = 0, inner = 0;
+  for (int y = 0; y < map.height() / 2; ++y) {
+    seam = std::max(seam, difference(map.at(0, y), map.at(map.width() - 1, y)));
+    inner = std::max(inner, difference(map.at(0, y), map.at(1, y)));
+  }
+  EXPECT_LT(seam, 2 * inner + 1e-3f);
+  std::vector<bool> seen(5, false);
+  for (const Material& m : s.materials) seen[static_cast<int>(m.type)] = true;
+  for (size_t t = 0; t < seen.size(); ++t) EXPECT_TRUE(seen[t]) << "material type " << t;
+  EXPECT_TRUE(s.point_lights.empty());
+  EXPECT_EQ(s.emissive_triangle_count(), 0u);
 }
 
 }  // namespace
