@@ -45,7 +45,9 @@ Color sky_radiance(Vec3f d, float u, float v, Vec3f sun) {
   float cover = std::clamp((clouds - 0.45f) / 0.2f, 0.0f, 1.0f) * std::min(1.0f, d.y * 6.0f);
   c = c * (1 - 0.8f * cover) + Color(1.6f) * (0.8f * cover);
   float cos_sun = d.x * sun.x + d.y * sun.y + d.z * sun.z;
-  if (cos_sun > std::cos(0.03f)) c += Color(900.0f, 820.0f, 700.0f);  // ~3.4 degrees across
+  // A hazy sun 9 degrees across: as much power as a sharp one would have at radiance ~1000, but
+  // seven times likelier to be hit by a path through the glass, so the caustics converge.
+  if (cos_sun > std::cos(0.08f)) c += Color(130.0f, 118.0f, 100.0f);
   return c;
 }
 
