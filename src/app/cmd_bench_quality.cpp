@@ -53,7 +53,8 @@ void set_unbiased(Switches& s) {
 
 // The baseline has every switch off (tiles, 12-byte sky texels, textures kept, per-type
 // material evaluation, PCG numbers, uniform sampling); each row switches one technique on;
-// "unbiased" switches on every technique that leaves the expected image alone, "all" every one.
+// "unbiased" switches on every technique that leaves the expected image alone, "defaults" is
+// QualityOptions{} (what the renderer does unless told otherwise), "all" switches on every one.
 const std::vector<Config>& configurations() {
   static const std::vector<Config> configs = {
       {"baseline", [](Switches&, const BenchQualityArgs&) {}},
@@ -69,6 +70,11 @@ const std::vector<Config>& configurations() {
       {"regularize", [](Switches& s, const BenchQualityArgs&) { s.quality.regularize = true; }},
       {"clamp", [](Switches& s, const BenchQualityArgs& a) { set_clamp(s.quality, a); }},
       {"unbiased", [](Switches& s, const BenchQualityArgs&) { set_unbiased(s); }},
+      {"defaults",
+       [](Switches& s, const BenchQualityArgs&) {
+         s.quality = QualityOptions{};  // what `render` and RenderSettings{} use
+         s.one_texel = true;
+       }},
       {"all",
        [](Switches& s, const BenchQualityArgs& a) {
          set_unbiased(s);

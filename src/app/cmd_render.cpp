@@ -135,7 +135,7 @@ int run_render(const RenderArgs& a) {
   settings.seed = a.seed;
   settings.strategy = parse_strategy(a.strategy);
   settings.quality = resolve_quality(a.quality);
-  if (settings.quality.adaptive && a.frame_ms <= 0)
+  if (a.quality.adaptive_on && a.frame_ms <= 0)
     throw std::invalid_argument("--adaptive needs the frame-budget mode (--frame-ms)");
   if (!a.truth_dir.empty()) {
     if (settings.quality.biased())

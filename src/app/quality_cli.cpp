@@ -6,7 +6,9 @@ namespace tuneray {
 
 void add_quality_options(CLI::App* cmd, QualityCli& q) {
   QualityOptions& o = q.options;
-  cmd->add_flag("--wavefront", o.wavefront, "Wavefront scheduler (batched rays) instead of tiles");
+  cmd->add_option("--scheduler", q.scheduler,
+                  "wavefront (paths in waves, batched rays) or tile (one path after another)")
+      ->capture_default_str();
   cmd->add_option("--batch-size", o.batch_size, "Paths per wavefront wave")
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
@@ -16,8 +18,10 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
                   "Sample generator: pcg (white noise) or bluenoise (blue-noise screen-space "
                   "error up to 16 dimensions and 256 spp)")
       ->capture_default_str();
-  cmd->add_flag("--branchless-materials", o.branchless_materials,
-                "Material f and pdf in one straight-line pass instead of a per-type switch");
+  cmd->add_option("--materials", q.materials,
+                  "Material evaluation: branchless (f and pdf in one straight-line pass) or "
+                  "by-type (a switch per material type)")
+      ->capture_default_str();
   cmd->add_flag("!--no-one-texel", q.one_texel,
                 "Keep textures on triangles whose UVs fall in one texel");
   cmd->add_flag("--lowres-sky", o.lowres_sky, "Biased: 8x8-averaged sky after the camera ray");
@@ -31,8 +35,11 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
                   "(0 = off; the first pass is unclamped)")
       ->check(CLI::Range(0.0f, 1e30f))
       ->capture_default_str();
-  cmd->add_flag("--adaptive", o.adaptive,
-                "Adaptive sampling (frame-budget mode): extra samples where variance is high");
+  cmd->add_flag("--adaptive", q.adaptive_on,
+                std::string("Adaptive sampling in frame-budget mode: extra samples where the "
+                            "error is highest") +
+                    (o.adaptive ? " (the default there)" : ""));
+  cmd->add_flag("--no-adaptive", q.adaptive_off, "Uniform sampling in frame-budget mode");
   cmd->add_option("--adaptive-min-spp", o.adaptive_min_spp,
                   "Uniform samples per pixel before adaptive sampling starts")
       ->check(CLI::Range(2, 1 << 16))
@@ -41,6 +48,24 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
 
 QualityOptions resolve_quality(const QualityCli& q) {
   QualityOptions o = q.options;
+  if (q.scheduler == "wavefront")
+    o.wavefront = true;
+  else if (q.scheduler == "tile")
+    o.wavefront = false;
+  else
+    throw std::invalid_argument("bad --scheduler '" + q.scheduler +
+                                "': expected wavefront or tile");
+  if (q.materials == "branchless")
+    o.branchless_materials = true;
+  else if (q.materials == "by-type")
+    o.branchless_materials = false;
+  else
+    throw std::invalid_argument("bad --materials '" + q.materials +
+                                "': expected branchless or by-type");
+  if (q.adaptive_on && q.adaptive_off)
+    throw std::invalid_argument("--adaptive and --no-adaptive contradict each other");
+  if (q.adaptive_on) o.adaptive = true;
+  if (q.adaptive_off) o.adaptive = false;
   if (q.sky_texels == "rgba")
     o.sky_rgba = true;
   else if (q.sky_texels == "rgb")

@@ -1,4 +1,6 @@
-// The equal-time quality switches as `render` options (docs/quality.md).
+// The equal-time quality switches as `render` options (docs/quality.md). Every default comes
+// from QualityOptions{}, so the command line and the library agree on what the measured
+// defaults are.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -10,9 +12,12 @@ namespace tuneray {
 
 struct QualityCli {
   QualityOptions options;
-  std::string sky_texels = "rgba";
-  std::string sampler = "pcg";
-  bool one_texel = true;  // collapse one-texel textures at load time
+  std::string scheduler = options.wavefront ? "wavefront" : "tile";
+  std::string sky_texels = options.sky_rgba ? "rgba" : "rgb";
+  std::string sampler = options.sampler == SamplerKind::kBlueNoise ? "bluenoise" : "pcg";
+  std::string materials = options.branchless_materials ? "branchless" : "by-type";
+  bool adaptive_on = false, adaptive_off = false;  // --adaptive / --no-adaptive given
+  bool one_texel = true;                           // collapse one-texel textures at load time
 };
 
 void add_quality_options(CLI::App* cmd, QualityCli& q);

@@ -123,6 +123,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
       settings.height = p.height;
       settings.max_bounces = p.max_bounces;
       settings.seed = p.seed;
+      settings.quality.wavefront = false;  // the study's protocol: see tune_session.cpp
       FrameBench bench(scene, settings, p.spp, objective);
       bench.run(BvhConfig{}, data.cameras[0]);  // warm-up, not counted
       LiveCosts live((fs::path(paths.out_dir) / "live_costs.tsv").string(), run_key);

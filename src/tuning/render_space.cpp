@@ -1,16 +1,31 @@
 #include "tuning/render_space.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
 #include "tuning/bvh_space.h"
 
 namespace tuneray {
 
+namespace {
+// `value` when the set holds it, else `fallback` (the renderer's own default).
+int64_t member_or(int64_t value, const std::vector<int64_t>& set, int64_t fallback) {
+  return std::find(set.begin(), set.end(), value) != set.end() ? value : fallback;
+}
+}  // namespace
+
 tuner::Space make_render_space(const RenderSettings& defaults) {
+  const std::vector<int64_t> tiles = {8, 16, 32, 64};
+  const std::vector<int64_t> batches = {256, 1024, 4096, 16384, 65536};
+  const RenderSettings renderer;
   tuner::Space space = make_bvh_space();
   space
       .add_enum("scheduler", {"tile", "wavefront"},
                 defaults.quality.wavefront ? "wavefront" : "tile")
-      .add_int_set("tile_size", {8, 16, 32, 64}, 32)
-      .add_int_set("batch_size", {256, 1024, 4096, 16384, 65536}, 4096);
+      .add_int_set("tile_size", tiles, member_or(defaults.tile_size, tiles, renderer.tile_size))
+      .add_int_set("batch_size", batches,
+                   member_or(defaults.quality.batch_size, batches, renderer.quality.batch_size));
   space.add_condition("tile_size", tuner::Space::when_enum_not("scheduler", {"wavefront"}))
       .add_condition("batch_size", tuner::Space::when_enum_not("scheduler", {"tile"}));
   return space;

@@ -1,8 +1,9 @@
 // The BVH space extended with the renderer's work sizes (`tuneray tune --work-sizes`): the 10
 // BVH parameters of bvh_space.h, then
 //   scheduler   {tile, wavefront}, default from the RenderSettings given (wavefront if on);
-//   tile_size   {8, 16, 32, 64}, default 32, active only under the tile scheduler;
-//   batch_size  {256, 1024, 4096, 16384, 65536}, default 4096, active only under wavefront.
+//   tile_size   {8, 16, 32, 64}, active only under the tile scheduler;
+//   batch_size  {256, 1024, 4096, 16384, 65536}, active only under wavefront;
+// each size's default is the settings' when its set holds it, else the renderer's default.
 // The inactive size is pinned to its default, so the search does not spend measurements on a
 // size the scheduler ignores. Opt-in: the BVH-only space (and its database signature) is
 // unchanged, and the extended one is stored under another tuning key.

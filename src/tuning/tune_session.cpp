@@ -63,6 +63,10 @@ TuneReport run_tune_session(const TuneOptions& o,
   settings.height = o.height;
   settings.max_bounces = o.max_bounces;
   settings.seed = o.seed;
+  // The BVH is tuned on the tile scheduler, one ray at a time as in the study we reproduce
+  // (DESIGN 6), whatever the render default: it keeps tuning keys and databases comparable.
+  // --work-sizes lets the tuner choose the scheduler.
+  settings.quality.wavefront = false;
   tuner::Space space = o.work_sizes ? make_render_space(settings) : make_bvh_space();
   tuner::HybridTuner tuner(space, make_indicator_schema(), options);
   // Without --work-sizes every frame keeps the settings' scheduler and sizes.

@@ -11,8 +11,8 @@ namespace tuneray {
 
 struct WorkSizes {
   bool wavefront = false;
-  int tile_size = 32;     // pixels per tile side (tile scheduler only)
-  int batch_size = 4096;  // paths per wave (wavefront scheduler only)
+  int tile_size = RenderSettings{}.tile_size;    // pixels per tile side (tile scheduler only)
+  int batch_size = QualityOptions{}.batch_size;  // paths per wave (wavefront scheduler only)
 
   static WorkSizes of(const RenderSettings& settings);
 

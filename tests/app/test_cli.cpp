@@ -92,8 +92,8 @@ TEST_F(Cli, BadOptionValuesAreRejected) {
 TEST_F(Cli, FrameBudgetRenderReportsEveryFrame) {
   std::string exr = (dir_ / "f.exr").string(), report = (dir_ / "f.json").string();
   CommandResult r = run_tuneray({"render", "cornell", "--size", "16x12", "--frame-ms", "5",
-                                 "--frames", "3", "--wavefront", "--clamp", "4", "--adaptive",
-                                 "--out", exr, "--report", report, "--quiet"});
+                                 "--frames", "3", "--scheduler", "tile", "--clamp", "4",
+                                 "--adaptive", "--out", exr, "--report", report, "--quiet"});
   ASSERT_FALSE(r.signaled) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream f(report);
@@ -105,6 +105,12 @@ TEST_F(Cli, FrameBudgetRenderReportsEveryFrame) {
 TEST_F(Cli, BadQualityOptionsAreRejected) {
   expect_clean_failure(run_tuneray({"render", "cornell", "--sky-texels", "rgbx"}), "rgbx");
   expect_clean_failure(run_tuneray({"render", "cornell", "--adaptive", "--quiet"}), "frame-ms");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--scheduler", "waves"}), "waves");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--materials", "fast"}), "fast");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--sampler", "sobol"}), "sobol");
+  expect_clean_failure(
+      run_tuneray({"render", "cornell", "--frame-ms", "5", "--adaptive", "--no-adaptive"}),
+      "contradict");
 }
 
 TEST_F(Cli, UnknownCommandFails) {

@@ -54,9 +54,9 @@ TEST_F(QualityBench, EveryConfigurationGetsARowPerFrameAndTheTruthIsShared) {
     EXPECT_EQ(c["rmse_repeats"].size(), 2u) << c["config"];
     EXPECT_GT(c["rmse"][1].get<double>(), 0.0) << c["config"];
   }
-  const std::vector<std::string> expected = {"baseline",   "wavefront", "sky-rgba", "one-texel",
-                                             "branchless", "bluenoise", "adaptive", "lowres-sky",
-                                             "regularize", "clamp",     "unbiased", "all"};
+  const std::vector<std::string> expected = {
+      "baseline",   "wavefront",  "sky-rgba", "one-texel", "branchless", "bluenoise", "adaptive",
+      "lowres-sky", "regularize", "clamp",    "unbiased",  "defaults",   "all"};
   EXPECT_EQ(names, expected);
   const std::vector<std::string> biased = {"lowres-sky", "regularize", "clamp", "all"};
   for (const auto& c : configs) {

@@ -163,6 +163,7 @@ TEST(BlueNoise, SameImageForAnyScheduler) {
   RenderSettings s;
   s.width = 20;
   s.height = 12;
+  s.quality.wavefront = false;
   BlueNoiseSampler sampler(4);
   Image tiles = render(scene, s, sampler, 3);
   s.quality.wavefront = true;

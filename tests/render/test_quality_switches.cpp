@@ -51,6 +51,7 @@ TEST(QualitySwitches, DefaultsAreUnbiased) {
 TEST(QualitySwitches, WavefrontGivesTheTileImage) {
   Scene scene = load_scene("cornell");
   RenderSettings s = small_settings();
+  s.quality.wavefront = false;
   Image tiles = render(scene, s, 3);
   s.quality.wavefront = true;
   for (int batch : {7, 256, 100000}) {
@@ -65,6 +66,7 @@ TEST(QualitySwitches, WavefrontGivesTheTileImage) {
 TEST(QualitySwitches, TileSizeDoesNotChangeTheImage) {
   Scene scene = load_scene("cornell");
   RenderSettings s = small_settings();
+  s.quality.wavefront = false;  // the tile scheduler is the one that reads the tile size
   Image a = render(scene, s, 2);
   s.tile_size = 7;
   Image b = render(scene, s, 2);
@@ -314,6 +316,7 @@ TEST(FrameBudget, EveryFrameAddsAtLeastOneSamplePerPixel) {
   accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
                scene.triangles.size()});
   RenderSettings s = small_settings();
+  s.quality.adaptive = false;
   PcgSampler sampler(1);
   TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
   Film film(s.width, s.height);

@@ -11,6 +11,9 @@
 namespace tuneray {
 namespace {
 
+// The wave size the renderer uses unless told otherwise (docs/quality.md's sweep chose it).
+const int kDefaultBatch = RenderSettings{}.quality.batch_size;
+
 TEST(RenderSpace, IsTheBvhSpacePlusSchedulerAndTwoSizes) {
   tuner::Space bvh = make_bvh_space();
   tuner::Space space = make_render_space(RenderSettings{});
@@ -29,9 +32,11 @@ TEST(RenderSpace, IsTheBvhSpacePlusSchedulerAndTwoSizes) {
 }
 
 TEST(RenderSpace, DefaultsFollowTheRenderSettings) {
-  tuner::Space space = make_render_space(RenderSettings{});
+  RenderSettings tiles;
+  tiles.quality.wavefront = false;
+  tuner::Space space = make_render_space(tiles);
   EXPECT_EQ(to_bvh_config(space.default_config()), BvhConfig{});
-  EXPECT_EQ(to_work_sizes(space.default_config()), WorkSizes::of(RenderSettings{}));
+  EXPECT_EQ(to_work_sizes(space.default_config()), WorkSizes::of(tiles));
   EXPECT_EQ(space.default_config().get_enum("scheduler"), "tile");
 
   RenderSettings wave;
@@ -39,7 +44,16 @@ TEST(RenderSpace, DefaultsFollowTheRenderSettings) {
   tuner::Config c = make_render_space(wave).default_config();
   EXPECT_EQ(c.get_enum("scheduler"), "wavefront");
   EXPECT_EQ(c.get_int("tile_size"), 32);
-  EXPECT_EQ(c.get_int("batch_size"), 4096);
+  EXPECT_EQ(c.get_int("batch_size"), kDefaultBatch);
+
+  RenderSettings sized;  // sizes from the settings when they are in their sets
+  sized.tile_size = 16;
+  sized.quality.batch_size = 256;
+  c = make_render_space(sized).default_config();
+  EXPECT_EQ(c.get_int("tile_size"), 16);
+  EXPECT_EQ(c.get_int("batch_size"), 256);
+  sized.tile_size = 7;  // outside {8, 16, 32, 64}: the renderer's default
+  EXPECT_EQ(make_render_space(sized).default_config().get_int("tile_size"), 32);
 }
 
 TEST(RenderSpace, TheSizeTheSchedulerIgnoresIsPinned) {
@@ -48,7 +62,7 @@ TEST(RenderSpace, TheSizeTheSchedulerIgnoresIsPinned) {
   EXPECT_EQ(space.parse("scheduler=wavefront,tile_size=8").get_int("tile_size"), 32);
   EXPECT_NE(space.parse("scheduler=wavefront,batch_size=256"), space.parse("scheduler=wavefront"));
   EXPECT_EQ(space.parse("scheduler=tile,batch_size=256"), space.parse("scheduler=tile"));
-  EXPECT_EQ(space.parse("scheduler=tile,batch_size=256").get_int("batch_size"), 4096);
+  EXPECT_EQ(space.parse("scheduler=tile,batch_size=256").get_int("batch_size"), kDefaultBatch);
   EXPECT_NE(space.parse("scheduler=tile,tile_size=8"), space.parse("scheduler=tile"));
 }
 
@@ -72,7 +86,7 @@ TEST(RenderSpace, DecodingCollapsesTheIgnoredSize) {
     }
     if (s < 0.5) {
       EXPECT_EQ(tiles.size(), 4u);
-      EXPECT_EQ(batches, std::set<int64_t>{4096});
+      EXPECT_EQ(batches, std::set<int64_t>{kDefaultBatch});
     } else {
       EXPECT_EQ(tiles, std::set<int64_t>{32});
       EXPECT_EQ(batches.size(), 5u);
@@ -89,7 +103,7 @@ TEST(RenderSpace, RoundTripsBvhAndWorkSizes) {
   b.set_cost_ratio(4.0f);
   b.compact = true;
   for (int t : {8, 16, 32, 64}) {
-    WorkSizes w{false, t, 4096};
+    WorkSizes w{false, t, kDefaultBatch};
     tuner::Config c = to_tuner_config(space, b, w);
     EXPECT_EQ(to_bvh_config(c).to_string(), b.to_string());
     EXPECT_EQ(to_work_sizes(c), w);
@@ -101,8 +115,8 @@ TEST(RenderSpace, RoundTripsBvhAndWorkSizes) {
     EXPECT_EQ(to_work_sizes(c), w);
   }
   // The ignored size may hold anything (even outside its set) and comes back as its default.
-  WorkSizes odd{true, 48, 1024};
-  EXPECT_EQ(to_work_sizes(to_tuner_config(space, b, odd)), (WorkSizes{true, 32, 1024}));
+  WorkSizes odd{true, 48, 16384};
+  EXPECT_EQ(to_work_sizes(to_tuner_config(space, b, odd)), (WorkSizes{true, 32, 16384}));
   EXPECT_THROW((to_tuner_config(space, b, WorkSizes{false, 48, 4096})), std::invalid_argument);
 }
 
@@ -115,7 +129,8 @@ TEST(RenderSpace, EveryDecodedPointIsValid) {
     EXPECT_EQ(to_bvh_config(c).validate(), "") << c.to_string();
     WorkSizes w = to_work_sizes(c);
     EXPECT_EQ(space.parse(c.to_string()), c);
-    EXPECT_EQ(w.wavefront ? w.tile_size : w.batch_size, w.wavefront ? 32 : 4096) << c.to_string();
+    EXPECT_EQ(w.wavefront ? w.tile_size : w.batch_size, w.wavefront ? 32 : kDefaultBatch)
+        << c.to_string();
   }
 }
 
