@@ -14,6 +14,7 @@
 
 #include "accel/factory.h"
 #include "app/cli_parse.h"
+#include "app/equal_time.h"
 #include "app/ground_truth.h"
 #include "app/scene_paths.h"
 #include "image/metrics.h"
@@ -100,6 +101,8 @@ struct ConfigResult {
   double ms_per_spp = 0, intersect = 0, shading = 0, shadow = 0;  // ms per spp
   double mrays_per_s = 0;
   double bias = 0;  // RMSE vs the unbiased render with the same random numbers; 0 if unbiased
+  double rmse_at_budget = 0;    // RMSE at exactly frames x frame budget (rmse_at)
+  double time_over_budget = 0;  // wall time of the frames / (frames x frame budget)
 };
 
 double rmse(const Image& a, const Image& b) {
@@ -167,8 +170,13 @@ double median(std::vector<double> v) {
   return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
-// Medians over the repeats, frame by frame.
-ConfigResult summarize(const std::string& name, const std::vector<FrameRun>& runs) {
+double rmse_at(const FrameRun& run, double t) {
+  return rmse_at_time(run.time_ms, run.rmse, t);
+}
+
+// Medians over the repeats, frame by frame; `budget_ms` is frames x frame budget.
+ConfigResult summarize(const std::string& name, const std::vector<FrameRun>& runs,
+                       double budget_ms) {
   ConfigResult r;
   r.name = name;
   const size_t frames = runs.front().rmse.size();
@@ -182,22 +190,34 @@ ConfigResult summarize(const std::string& name, const std::vector<FrameRun>& run
     r.spp.push_back(per_frame(&FrameRun::spp, f));
     r.rmse.push_back(per_frame(&FrameRun::rmse, f));
   }
-  std::vector<double> ms_per_spp, mrays;
+  std::vector<double> ms_per_spp, mrays, at_budget, over;
   for (const FrameRun& run : runs) {
     ms_per_spp.push_back(run.time_ms.back() / std::max(run.spp.back(), 1e-9));
     mrays.push_back(run.mrays_per_s);
+    at_budget.push_back(rmse_at(run, budget_ms));
+    over.push_back(run.time_ms.back() / budget_ms);
   }
   r.ms_per_spp = median(ms_per_spp);
   r.mrays_per_s = median(mrays);
+  r.rmse_at_budget = median(at_budget);
+  r.time_over_budget = median(over);
   return r;
 }
 
+const char* kHeader = "{:<11} {:>8} {:>7} {:>7} {:>7} {:>7} {:>6} {:>6} {:>9} {:>7} {:>8}\n";
+
+void print_header() {
+  fmt::print(fmt::runtime(kHeader), "config", "ms/spp", "isect", "shade", "shadow", "Mray/s", "spp",
+             "t/T", "RMSE@T", "vs base", "bias");
+}
+
 void print_row(const ConfigResult& r, double base_rmse) {
-  std::string ratio = base_rmse > 0 ? fmt::format("{:.3f}", r.rmse.back() / base_rmse) : "-";
-  fmt::print(
-      "{:<11} {:>8.2f} {:>7.2f} {:>7.2f} {:>7.2f} {:>7.2f} {:>8.1f} {:>9.5f} {:>7} {:>8.5f}\n",
-      r.name, r.ms_per_spp, r.intersect, r.shading, r.shadow, r.mrays_per_s, r.spp.back(),
-      r.rmse.back(), ratio, r.bias);
+  std::string ratio = base_rmse > 0 ? fmt::format("{:.3f}", r.rmse_at_budget / base_rmse) : "-";
+  fmt::print(fmt::runtime(kHeader), r.name, fmt::format("{:.2f}", r.ms_per_spp),
+             fmt::format("{:.2f}", r.intersect), fmt::format("{:.2f}", r.shading),
+             fmt::format("{:.2f}", r.shadow), fmt::format("{:.2f}", r.mrays_per_s),
+             fmt::format("{:.1f}", r.spp.back()), fmt::format("{:.2f}", r.time_over_budget),
+             fmt::format("{:.5f}", r.rmse_at_budget), ratio, fmt::format("{:.5f}", r.bias));
   std::fflush(stdout);
 }
 
@@ -237,8 +257,7 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
   if (a.target_spp > 0)  // budget from the baseline's speed on this scene and machine
     frame_ms = a.target_spp * measure_ms_per_spp(scene, *accel, camera, base);
   fmt::print("frame budget {:.1f} ms, {} frames\n", frame_ms, a.frames);
-  fmt::print("{:<11} {:>8} {:>7} {:>7} {:>7} {:>7} {:>8} {:>9} {:>7} {:>8}\n", "config", "ms/spp",
-             "isect", "shade", "shadow", "Mray/s", "spp", "RMSE", "vs base", "bias");
+  print_header();
   std::fflush(stdout);
 
   struct Chosen {
@@ -276,7 +295,7 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
   for (size_t i = 0; i < chosen.size(); ++i) {
     const RenderSettings& s = chosen[i].settings;
     const Scene& used = *chosen[i].scene;
-    ConfigResult r = summarize(chosen[i].name, runs[i]);
+    ConfigResult r = summarize(chosen[i].name, runs[i], frame_ms * a.frames);
     {  // phase times from a separate profiled pass (the clocks cost a little)
       RenderSettings p = s;
       p.quality.profile_phases = true;
@@ -297,7 +316,7 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
       r.bias = rmse(render_fixed(used, *accel, camera, biased, 2, a.bias_spp),
                     render_fixed(used, *accel, camera, unbiased, 2, a.bias_spp));
     }
-    if (r.name == "baseline") base_rmse = r.rmse.back();
+    if (r.name == "baseline") base_rmse = r.rmse_at_budget;
     print_row(r, base_rmse);
     plot_data << "\"" << scene.name << " " << r.name << "\"\n";
     for (size_t f = 0; f < r.time_ms.size(); ++f)
@@ -315,7 +334,9 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
                     {"time_ms", r.time_ms},
                     {"rmse", r.rmse},
                     {"rmse_repeats", final_rmse},
-                    {"rmse_vs_baseline", base_rmse > 0 ? r.rmse.back() / base_rmse : 0.0},
+                    {"rmse_at_budget", r.rmse_at_budget},
+                    {"time_over_budget", r.time_over_budget},
+                    {"rmse_vs_baseline", base_rmse > 0 ? r.rmse_at_budget / base_rmse : 0.0},
                     {"bias", r.bias}});
     results.push_back(r);
   }
@@ -480,8 +501,8 @@ int run_bench_quality(const BenchQualityArgs& a) {
     fmt::print("\n");
   }
   if (!a.plot.empty()) write_plot_script(a.plot, panels);
-  print_ratio_matrix("RMSE at equal time / baseline's (median over repeats):", out["scenes"],
-                     "rmse");
+  print_ratio_matrix("RMSE at equal time (frames x budget) / baseline's (median over repeats):",
+                     out["scenes"], "rmse_at_budget");
   print_ratio_matrix("Time per spp / baseline's:", out["scenes"], "ms_per_spp");
   return 0;
 }

@@ -35,6 +35,17 @@ PassStats FrameBudgetRenderer::add_samples(Film& film, double spp) {
   return renderer_.render_extra(film, std::vector<uint32_t>(pixels, whole));
 }
 
+void FrameBudgetRenderer::PassCost::update(double per_spp, double overhead) {
+  const bool first = ms_per_spp <= 0;
+  ms_per_spp = first ? per_spp : 0.5 * ms_per_spp + 0.5 * per_spp;
+  overhead_ms = first ? overhead : 0.5 * overhead_ms + 0.5 * overhead;
+}
+
+double FrameBudgetRenderer::ms_per_spp() const {
+  return adaptive_ready() && adaptive_cost_.ms_per_spp > 0 ? adaptive_cost_.ms_per_spp
+                                                           : uniform_cost_.ms_per_spp;
+}
+
 FrameResult FrameBudgetRenderer::render_frame(Film& film) {
   const RenderSettings& s = renderer_.settings();
   const double pixels = static_cast<double>(s.width) * s.height;
@@ -46,14 +57,22 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film) {
   FrameResult frame;
   bool first_pass = true;
   for (;;) {
-    // A pass costs a fixed overhead (adaptive bookkeeping, thread start-up) plus its samples;
-    // folding the overhead into the cost per sample would make small passes look expensive
-    // and plan ever smaller ones.
-    double left = frame_ms_ - elapsed() - overhead_ms_;
-    double fit = ms_per_spp_ > 0 ? left / ms_per_spp_ : 1.0;
+    const bool adaptive = adaptive_ready();
+    PassCost& cost = adaptive ? adaptive_cost_ : uniform_cost_;
+    // A pass costs a fixed overhead plus its samples; folding the overhead into the cost per
+    // sample would make small passes look expensive and plan ever smaller ones.
+    double fit;
+    if (cost.ms_per_spp > 0) {
+      fit = (frame_ms_ - elapsed() - cost.overhead_ms) / cost.ms_per_spp;
+    } else if (adaptive && uniform_cost_.ms_per_spp > 0) {
+      double uniform_fit = (frame_ms_ - elapsed()) / uniform_cost_.ms_per_spp;
+      fit = std::min(kAdaptiveProbePass, uniform_fit);
+    } else {
+      fit = 1.0;
+    }
     // Adaptive passes can be a fraction of a sample per pixel, uniform ones cannot. Every
     // frame gets at least one pass.
-    double smallest = adaptive_ready() ? kSmallestAdaptivePass : 1.0;
+    double smallest = adaptive ? kSmallestAdaptivePass : 1.0;
     if (fit < smallest) {
       if (!first_pass) break;
       fit = smallest < 1.0 ? std::max(fit, smallest) : 1.0;
@@ -63,11 +82,7 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film) {
     double pass_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     double samples = std::max(1.0, static_cast<double>(pass.samples));
-    double per_spp = pass.render_ms * pixels / samples;
-    double overhead = std::max(0.0, pass_ms - pass.render_ms);
-    ms_per_spp_ = ms_per_spp_ > 0 ? 0.5 * ms_per_spp_ + 0.5 * per_spp : per_spp;
-    overhead_ms_ = passes_ > 0 ? 0.5 * overhead_ms_ + 0.5 * overhead : overhead;
-    ++passes_;
+    cost.update(pass.render_ms * pixels / samples, std::max(0.0, pass_ms - pass.render_ms));
     frame.stats.accumulate(pass);
     first_pass = false;
   }

@@ -22,7 +22,9 @@ class FrameBudgetRenderer {
       : renderer_(renderer), frame_ms_(frame_ms) {}
 
   FrameResult render_frame(Film& film);
-  double ms_per_spp() const { return ms_per_spp_; }
+  // Running estimate of rendering time per spp of the passes to come (adaptive ones once
+  // adaptive sampling has started); 0 = not measured yet.
+  double ms_per_spp() const;
 
  private:
   // True once every pixel has the uniform samples adaptive sampling starts from.
@@ -33,12 +35,21 @@ class FrameBudgetRenderer {
 
   // Below this many samples per pixel an adaptive pass is not worth its bookkeeping.
   static constexpr double kSmallestAdaptivePass = 0.1;
+  // The first adaptive pass, before its cost per sample is known: adaptive samples go where
+  // the error is, which is where paths are long (often 2-5x a uniform sample), so planning
+  // it with the uniform cost would overrun the frame.
+  static constexpr double kAdaptiveProbePass = 0.25;
+
+  // Uniform and adaptive passes cost differently per sample and are estimated apart.
+  struct PassCost {
+    double ms_per_spp = 0;   // rendering time per spp; 0 = not measured yet
+    double overhead_ms = 0;  // a pass's time outside rendering (adaptive bookkeeping)
+    void update(double per_spp, double overhead);
+  };
 
   const TileRenderer& renderer_;
   double frame_ms_;
-  double ms_per_spp_ = 0;   // running estimate of rendering time per spp; 0 = not measured yet
-  double overhead_ms_ = 0;  // running estimate of a pass's time outside rendering
-  int passes_ = 0;
+  PassCost uniform_cost_, adaptive_cost_;
   uint32_t next_sample_ = 0;  // uniform mode: sample index of the next pass
   uint32_t min_samples_ = 0;  // adaptive mode: samples every pixel has
 };

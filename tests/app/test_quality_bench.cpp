@@ -53,6 +53,8 @@ TEST_F(QualityBench, EveryConfigurationGetsARowPerFrameAndTheTruthIsShared) {
     EXPECT_EQ(c["rmse"].size(), 2u) << c["config"];
     EXPECT_EQ(c["rmse_repeats"].size(), 2u) << c["config"];
     EXPECT_GT(c["rmse"][1].get<double>(), 0.0) << c["config"];
+    EXPECT_GT(c["rmse_at_budget"].get<double>(), 0.0) << c["config"];
+    EXPECT_GT(c["time_over_budget"].get<double>(), 0.0) << c["config"];
   }
   const std::vector<std::string> expected = {
       "baseline",   "wavefront",  "sky-rgba", "one-texel", "branchless", "bluenoise", "adaptive",
