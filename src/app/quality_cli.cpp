@@ -1,6 +1,9 @@
 #include "app/quality_cli.h"
 
+#include <initializer_list>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace tuneray {
 
@@ -46,38 +49,32 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
       ->capture_default_str();
 }
 
+namespace {
+// The value of a named choice, or an error that names the option, the value and the choices.
+template <class T>
+T choose(const char* option, const std::string& value,
+         std::initializer_list<std::pair<const char*, T>> choices) {
+  std::string names;
+  for (const auto& [name, result] : choices) {
+    if (value == name) return result;
+    names += (names.empty() ? "" : " or ") + std::string(name);
+  }
+  throw std::invalid_argument(std::string("bad ") + option + " '" + value + "': expected " + names);
+}
+}  // namespace
+
 QualityOptions resolve_quality(const QualityCli& q) {
   QualityOptions o = q.options;
-  if (q.scheduler == "wavefront")
-    o.wavefront = true;
-  else if (q.scheduler == "tile")
-    o.wavefront = false;
-  else
-    throw std::invalid_argument("bad --scheduler '" + q.scheduler +
-                                "': expected wavefront or tile");
-  if (q.materials == "branchless")
-    o.branchless_materials = true;
-  else if (q.materials == "by-type")
-    o.branchless_materials = false;
-  else
-    throw std::invalid_argument("bad --materials '" + q.materials +
-                                "': expected branchless or by-type");
+  o.wavefront = choose<bool>("--scheduler", q.scheduler, {{"wavefront", true}, {"tile", false}});
+  o.branchless_materials =
+      choose<bool>("--materials", q.materials, {{"branchless", true}, {"by-type", false}});
+  o.sky_rgba = choose<bool>("--sky-texels", q.sky_texels, {{"rgba", true}, {"rgb", false}});
+  o.sampler = choose<SamplerKind>(
+      "--sampler", q.sampler, {{"bluenoise", SamplerKind::kBlueNoise}, {"pcg", SamplerKind::kPcg}});
   if (q.adaptive_on && q.adaptive_off)
     throw std::invalid_argument("--adaptive and --no-adaptive contradict each other");
   if (q.adaptive_on) o.adaptive = true;
   if (q.adaptive_off) o.adaptive = false;
-  if (q.sky_texels == "rgba")
-    o.sky_rgba = true;
-  else if (q.sky_texels == "rgb")
-    o.sky_rgba = false;
-  else
-    throw std::invalid_argument("bad --sky-texels '" + q.sky_texels + "': expected rgba or rgb");
-  if (q.sampler == "pcg")
-    o.sampler = SamplerKind::kPcg;
-  else if (q.sampler == "bluenoise")
-    o.sampler = SamplerKind::kBlueNoise;
-  else
-    throw std::invalid_argument("bad --sampler '" + q.sampler + "': expected pcg or bluenoise");
   return o;
 }
 

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <functional>
 
+#include "render/neighbourhood_mean.h"
+
 namespace tuneray {
 
 namespace {
@@ -20,23 +22,7 @@ std::vector<double> sample_variance(const Film& film, bool filter) {
     for (int x = 0; x < w; ++x)
       var[static_cast<size_t>(y) * w + x] = film.variance_of_mean(x, y) * film.samples(x, y);
   });
-  if (!filter) return var;
-  std::vector<double> out(var.size());
-  tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < w; ++x) {
-      double sum = 0;
-      int count = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
-          sum += var[static_cast<size_t>(yy) * w + xx];
-          ++count;
-        }
-      out[static_cast<size_t>(y) * w + x] = sum / count;
-    }
-  });
-  return out;
+  return filter ? neighbourhood_mean(var, w, h) : var;
 }
 
 }  // namespace

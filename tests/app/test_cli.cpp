@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "command_test.h"
 #include "run_command.h"
 
 namespace tuneray {
@@ -13,22 +14,7 @@ namespace {
 using testing::CommandResult;
 using testing::run_tuneray;
 
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("tuneray-cli-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& content) {
-    std::filesystem::path p = dir_ / name;
-    std::ofstream(p) << content;
-    return p.string();
-  }
-  std::filesystem::path dir_;
-};
+class Cli : public testing::CommandTest {};
 
 void expect_clean_failure(const CommandResult& r, const std::string& must_mention) {
   EXPECT_FALSE(r.signaled) << "killed by signal " << r.signal << "\n" << r.output;

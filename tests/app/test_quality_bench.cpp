@@ -2,13 +2,13 @@
 // for every frame, the unbiased rows have no bias, `render --truth-dir` finds the truth the
 // benchmark rendered (one cache, one key), and bad requests fail cleanly.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "command_test.h"
 #include "run_command.h"
 
 namespace tuneray {
@@ -17,18 +17,7 @@ namespace {
 using testing::CommandResult;
 using testing::run_tuneray;
 
-class QualityBench : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("tuneray-quality-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::filesystem::path dir_;
-};
+class QualityBench : public testing::CommandTest {};
 
 void expect_success(const CommandResult& r) {
   ASSERT_FALSE(r.signaled) << r.output;
@@ -90,11 +79,14 @@ TEST_F(QualityBench, UnknownConfigurationIsNamed) {
 }
 
 TEST_F(QualityBench, TruthRefusesBiasedOptions) {
-  for (const char* flag : {"--clamp-rel", "--clamp"}) {
-    CommandResult r = run_tuneray({"render", "cornell", "--size", "24x16", "--spp", "4",
-                                   "--truth-dir", path("truth"), flag, "4"});
+  for (std::vector<std::string> flag : std::vector<std::vector<std::string>>{
+           {"--clamp-rel", "4"}, {"--clamp", "4"}, {"--regularize"}, {"--lowres-sky"}}) {
+    std::vector<std::string> args = {"render", "cornell", "--size",      "24x16",
+                                     "--spp",  "4",       "--truth-dir", path("truth")};
+    args.insert(args.end(), flag.begin(), flag.end());
+    CommandResult r = run_tuneray(args);
     EXPECT_FALSE(r.signaled) << r.output;
-    EXPECT_NE(r.exit_code, 0) << flag;
+    EXPECT_NE(r.exit_code, 0) << flag[0];
     EXPECT_NE(r.output.find("unbiased"), std::string::npos) << r.output;
   }
 }

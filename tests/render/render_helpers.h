@@ -10,8 +10,8 @@
 
 namespace tuneray::testing {
 
-inline Image render_image(const Scene& scene, const RenderSettings& settings,
-                          const Sampler& sampler, uint32_t spp, PassStats* stats = nullptr) {
+inline Film render_film(const Scene& scene, const RenderSettings& settings, const Sampler& sampler,
+                        uint32_t spp, PassStats* stats = nullptr) {
   EmbreeNativeAccel accel;
   accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
                scene.triangles.size()});
@@ -19,7 +19,12 @@ inline Image render_image(const Scene& scene, const RenderSettings& settings,
   Film film(settings.width, settings.height);
   PassStats pass = renderer.render_pass(film, 0, spp);
   if (stats) *stats = pass;
-  return film.resolve();
+  return film;
+}
+
+inline Image render_image(const Scene& scene, const RenderSettings& settings,
+                          const Sampler& sampler, uint32_t spp, PassStats* stats = nullptr) {
+  return render_film(scene, settings, sampler, spp, stats).resolve();
 }
 
 // The PCG sampler seeded from the settings, as `tuneray render` uses it.

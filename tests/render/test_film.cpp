@@ -13,14 +13,7 @@ namespace tuneray {
 namespace {
 
 Film render_film(const Scene& scene, const RenderSettings& s, uint32_t spp) {
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
-  PcgSampler sampler(s.seed);
-  TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
-  Film film(s.width, s.height);
-  renderer.render_pass(film, 0, spp);
-  return film;
+  return testing::render_film(scene, s, PcgSampler(s.seed), spp);
 }
 
 // E[RMSE^2] of an image against its limit is the mean variance of its pixel means. Against an
