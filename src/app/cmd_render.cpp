@@ -51,6 +51,9 @@ struct RenderArgs {
   QualityCli quality;
 };
 
+// Samples per pixel of a ground truth when --spp is not given (docs/quality.md).
+constexpr int kTruthSpp = 4096;
+
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
@@ -89,6 +92,14 @@ void write_outputs(const std::vector<std::string>& outputs, const Image& image, 
   }
 }
 
+void write_report(const std::string& path, const nlohmann::ordered_json& report) {
+  if (path.empty()) return;
+  std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  std::ofstream f(path);
+  if (!(f << report.dump(2) << "\n")) throw std::runtime_error("cannot write report " + path);
+}
+
 // --truth-dir: the ground truth of `bench quality` (same cache, same key), read or rendered.
 int run_truth(const RenderArgs& a, const Scene& scene, const Accel& accel, double load_ms,
               double build_ms) {
@@ -108,10 +119,7 @@ int run_truth(const RenderArgs& a, const Scene& scene, const Accel& accel, doubl
                                    {"build_ms", build_ms},
                                    {"render_ms", info.render_ms},
                                    {"outputs", a.outputs}};
-  if (!a.report.empty()) {
-    std::ofstream f(a.report);
-    if (!(f << report.dump(2) << "\n")) throw std::runtime_error("cannot write report " + a.report);
-  }
+  write_report(a.report, report);
   if (!a.quiet) {
     if (info.rendered)
       std::cout << "truth     " << path << " (" << info.spp << " spp in "
@@ -229,12 +237,7 @@ int run_render(const RenderArgs& a) {
       {"invalid_samples", total.invalid_samples},
       {"outputs", outputs},
   };
-  if (!a.report.empty()) {
-    std::filesystem::path parent = std::filesystem::path(a.report).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
-    std::ofstream f(a.report);
-    if (!(f << report.dump(2) << "\n")) throw std::runtime_error("cannot write report " + a.report);
-  }
+  write_report(a.report, report);
   if (!a.quiet) {
     std::cout << "scene     " << a.scene << " (" << scene.triangles.size()
               << " triangles, loaded in " << static_cast<int>(load_ms) << " ms)\n"
@@ -258,9 +261,10 @@ CommandAction add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render a scene to an image");
   cmd->add_option("scene", args->scene, "Built-in name, mesh file (.obj/.ply/.gltf) or .json scene")
       ->capture_default_str();
-  cmd->add_option("--spp", args->spp, "Samples per pixel")
-      ->check(CLI::Range(1, 1 << 20))
-      ->capture_default_str();
+  CLI::Option* spp =
+      cmd->add_option("--spp", args->spp, "Samples per pixel (with --truth-dir: 4096 unless given)")
+          ->check(CLI::Range(1, 1 << 20))
+          ->capture_default_str();
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--out", args->outputs, "Output file(s): .png, .exr or .pfm (repeatable)");
   cmd->add_option("--accel", args->accel, "Acceleration structure backend")->capture_default_str();
@@ -300,7 +304,10 @@ CommandAction add_render_command(CLI::App& app) {
                   "size, bounces and --spp/--until-rmse from this folder, or render and cache it "
                   "(tiles, PCG, seed 0; shared with bench quality)");
   add_quality_options(cmd, args->quality);
-  return [args] { return run_render(*args); };
+  return [args, spp] {
+    if (!args->truth_dir.empty() && spp->count() == 0) args->spp = kTruthSpp;
+    return run_render(*args);
+  };
 }
 
 }  // namespace tuneray

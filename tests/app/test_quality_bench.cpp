@@ -91,6 +91,18 @@ TEST_F(QualityBench, TruthRefusesBiasedOptions) {
   }
 }
 
+// A ground truth without --spp gets the 4096 samples of a converged reference, not render's 16;
+// the report lands in a folder that did not exist.
+TEST_F(QualityBench, TruthDefaultsTo4096Spp) {
+  const std::string report = path("sub/r.json");
+  CommandResult r = run_tuneray({"render", "cornell", "--size", "4x3", "--truth-dir", path("truth"),
+                                 "--report", report, "--quiet"});
+  expect_success(r);
+  nlohmann::json out = nlohmann::json::parse(std::ifstream(report));
+  EXPECT_EQ(out["spp"].get<int>(), 4096);
+  EXPECT_TRUE(out["rendered"].get<bool>());
+}
+
 // --until-rmse stops a render once its own error estimate is low enough, before --spp.
 TEST_F(QualityBench, UntilRmseStopsEarly) {
   const std::string report = path("r.json");
