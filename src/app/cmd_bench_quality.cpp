@@ -4,13 +4,11 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "accel/factory.h"
 #include "app/cli_parse.h"
@@ -24,6 +22,7 @@
 #include "render/tile_renderer.h"
 #include "scene/load.h"
 #include "scene/one_texel.h"
+#include "tuning/stats.h"
 
 namespace tuneray {
 
@@ -86,15 +85,6 @@ const std::vector<Config>& configurations() {
   return configs;
 }
 
-QualityOptions baseline_options() {
-  QualityOptions o;
-  o.wavefront = o.adaptive = o.branchless_materials = false;
-  o.sampler = SamplerKind::kPcg;
-  o.sky_rgba = false;
-  o = o.without_bias();
-  return o;
-}
-
 struct ConfigResult {
   std::string name;
   std::vector<double> time_ms, spp, rmse;  // after each frame (time and spp cumulative)
@@ -131,8 +121,7 @@ double measure_ms_per_spp(const Scene& scene, const Accel& accel, const CameraDe
   std::vector<double> ms;
   for (uint32_t r = 0; r < 3; ++r)
     ms.push_back(renderer.render_pass(film, 1 + 2 * r, 2).render_ms / 2);
-  std::sort(ms.begin(), ms.end());
-  return ms[1];
+  return median(ms);
 }
 
 // One frame-budget run of a configuration: cumulative time, spp and RMSE after each frame.
@@ -164,16 +153,6 @@ FrameRun run_frames(const Scene& scene, const Accel& accel, const CameraDesc& ca
   return run;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
-
-double rmse_at(const FrameRun& run, double t) {
-  return rmse_at_time(run.time_ms, run.rmse, t);
-}
-
 // Medians over the repeats, frame by frame; `budget_ms` is frames x frame budget.
 ConfigResult summarize(const std::string& name, const std::vector<FrameRun>& runs,
                        double budget_ms) {
@@ -194,7 +173,7 @@ ConfigResult summarize(const std::string& name, const std::vector<FrameRun>& run
   for (const FrameRun& run : runs) {
     ms_per_spp.push_back(run.time_ms.back() / std::max(run.spp.back(), 1e-9));
     mrays.push_back(run.mrays_per_s);
-    at_budget.push_back(rmse_at(run, budget_ms));
+    at_budget.push_back(rmse_at_time(run.time_ms, run.rmse, budget_ms));
     over.push_back(run.time_ms.back() / budget_ms);
   }
   r.ms_per_spp = median(ms_per_spp);
@@ -222,7 +201,7 @@ void print_row(const ConfigResult& r, double base_rmse) {
 }
 
 nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& spec,
-                                 std::vector<ConfigResult>& results, std::ostream& plot_data) {
+                                 std::ostream& plot_data) {
   auto [width, height] = parse_size(a.size);
   LoadOptions load_options;
   load_options.scenes_dir = a.scenes_dir;
@@ -251,7 +230,7 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
   base.width = width;
   base.height = height;
   base.max_bounces = a.max_bounces;
-  base.quality = baseline_options();
+  base.quality = QualityOptions::reference();
   const double threads = tbb::this_task_arena::max_concurrency();
   double frame_ms = a.frame_ms;
   if (a.target_spp > 0)  // budget from the baseline's speed on this scene and machine
@@ -289,7 +268,6 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
     }
   }
 
-  results.clear();
   double base_rmse = 0;
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (size_t i = 0; i < chosen.size(); ++i) {
@@ -338,7 +316,6 @@ nlohmann::ordered_json run_scene(const BenchQualityArgs& a, const std::string& s
                     {"time_over_budget", r.time_over_budget},
                     {"rmse_vs_baseline", base_rmse > 0 ? r.rmse_at_budget / base_rmse : 0.0},
                     {"bias", r.bias}});
-    results.push_back(r);
   }
 
   nlohmann::ordered_json sweep = nlohmann::ordered_json::array();
@@ -399,7 +376,7 @@ void write_plot_script(const std::string& prefix, const std::vector<PlotScene>& 
   gp << "unset multiplot\n";
 }
 
-// Markdown: one row per scene, one column per configuration, `value(config)` / the baseline's;
+// Markdown: one row per scene, one column per configuration, `config[field]` / the baseline's;
 // a last row with the geometric mean over scenes.
 void print_ratio_matrix(const std::string& title, const nlohmann::ordered_json& scenes,
                         const char* field) {
@@ -416,30 +393,26 @@ void print_ratio_matrix(const std::string& title, const nlohmann::ordered_json& 
   fmt::print("\n|---|");
   for (size_t i = 0; i < names.size(); ++i) fmt::print("---|");
   fmt::print("\n");
-  std::vector<double> log_sum(names.size(), 0.0);
-  std::vector<int> count(names.size(), 0);
+  std::vector<std::vector<double>> ratios(names.size());
   for (const auto& scene : scenes) {
     double base = 0;
     for (const auto& c : scene["configs"])
-      if (c["config"] == "baseline")
-        base = c[field].is_array() ? c[field].back().get<double>() : c[field].get<double>();
+      if (c["config"] == "baseline") base = c[field].get<double>();
     fmt::print("| {} |", scene["name"].get<std::string>());
     for (size_t i = 0; i < names.size(); ++i) {
       std::string cell = " - |";
       for (const auto& c : scene["configs"]) {
         if (c["config"] != names[i] || !(base > 0)) continue;
-        double v = c[field].is_array() ? c[field].back().get<double>() : c[field].get<double>();
-        cell = fmt::format(" {:.2f} |", v / base);
-        log_sum[i] += std::log(v / base);
-        ++count[i];
+        ratios[i].push_back(c[field].get<double>() / base);
+        cell = fmt::format(" {:.2f} |", ratios[i].back());
       }
       fmt::print("{}", cell);
     }
     fmt::print("\n");
   }
   fmt::print("| geo-mean |");
-  for (size_t i = 0; i < names.size(); ++i)
-    fmt::print("{}", count[i] ? fmt::format(" {:.2f} |", std::exp(log_sum[i] / count[i])) : " - |");
+  for (const std::vector<double>& r : ratios)
+    fmt::print("{}", r.empty() ? " - |" : fmt::format(" {:.2f} |", geometric_mean(r)));
   fmt::print("\n");
 }
 
@@ -490,12 +463,10 @@ int run_bench_quality(const BenchQualityArgs& a) {
   std::vector<PlotScene> panels;
   int block = 0;
   for (const std::string& spec : scenes) {
-    std::vector<ConfigResult> results;
-    std::ostringstream data;
-    out["scenes"].push_back(run_scene(a, spec, results, data));
-    if (plot_data.is_open()) plot_data << data.str() << std::flush;
-    PlotScene panel{out["scenes"].back()["name"].get<std::string>(), {}};
-    for (const ConfigResult& r : results) panel.lines.emplace_back(block++, r.name);
+    const nlohmann::ordered_json& scene = out["scenes"].emplace_back(run_scene(a, spec, plot_data));
+    plot_data << std::flush;
+    PlotScene panel{scene["name"].get<std::string>(), {}};
+    for (const auto& c : scene["configs"]) panel.lines.emplace_back(block++, c["config"]);
     panels.push_back(panel);
     write_json();
     fmt::print("\n");

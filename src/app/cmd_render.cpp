@@ -101,9 +101,8 @@ void write_report(const std::string& path, const nlohmann::ordered_json& report)
 }
 
 // --truth-dir: the ground truth of `bench quality` (same cache, same key), read or rendered.
-int run_truth(const RenderArgs& a, const Scene& scene, const Accel& accel, double load_ms,
-              double build_ms) {
-  auto [width, height] = parse_size(a.size);
+int run_truth(const RenderArgs& a, int width, int height, const Scene& scene, const Accel& accel,
+              double load_ms, double build_ms) {
   GroundTruthKey key{a.scene,     scene.cameras[a.camera], width, height, a.max_bounces, a.spp,
                      a.until_rmse};
   GroundTruthInfo info;
@@ -177,7 +176,8 @@ int run_render(const RenderArgs& a) {
                         scene.triangles.size()};
   BuildStats build = accel->build(geometry);
 
-  if (!a.truth_dir.empty()) return run_truth(a, scene, *accel, load_ms, build.build_ms);
+  if (!a.truth_dir.empty())
+    return run_truth(a, width, height, scene, *accel, load_ms, build.build_ms);
 
   std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, a.seed);
   TileRenderer renderer(scene, *accel, scene.cameras[a.camera], settings, *sampler);

@@ -39,11 +39,7 @@ RenderSettings ground_truth_settings(const GroundTruthKey& key) {
   settings.height = key.height;
   settings.max_bounces = key.max_bounces;
   settings.seed = 0;
-  settings.quality = QualityOptions{}.without_bias();
-  settings.quality.wavefront = false;
-  settings.quality.adaptive = false;
-  settings.quality.sampler = SamplerKind::kPcg;
-  settings.quality.branchless_materials = false;
+  settings.quality = QualityOptions::reference();
   return settings;
 }
 

@@ -25,9 +25,9 @@ struct GroundTruthKey {
 // `dir`/truth-<hash>.exr; the hash covers every field of the key.
 std::string ground_truth_path(const std::string& dir, const GroundTruthKey& key);
 
-// The settings a ground truth is rendered with: tiles, PCG sampler, seed 0, per-type material
-// evaluation, every biased option off. The equal-time renders use other seeds, so their noise
-// is independent of the reference's.
+// The settings a ground truth is rendered with: QualityOptions::reference() (tiles, PCG,
+// per-type materials, nothing biased) and seed 0. The equal-time renders use other seeds, so their
+// noise is independent of the reference's.
 RenderSettings ground_truth_settings(const GroundTruthKey& key);
 
 struct GroundTruthInfo {

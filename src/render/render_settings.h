@@ -43,8 +43,18 @@ struct QualityOptions {
 
   bool biased() const { return lowres_sky || regularize || clamp > 0 || clamp_relative > 0; }
 
+  // Every technique off: tiles, 12-byte sky texels, per-type materials, PCG numbers, uniform
+  // sampling, nothing biased. The plain renderer that ground truths use and that the ablation
+  // measures every technique against.
+  static QualityOptions reference() {
+    QualityOptions o;
+    o.wavefront = o.sky_rgba = o.adaptive = o.branchless_materials = false;
+    o.sampler = SamplerKind::kPcg;
+    return o.without_bias();
+  }
+
   // Every option that changes the expected image switched off, every unbiased one left as it
-  // is: what a ground-truth render uses.
+  // is.
   QualityOptions without_bias() const {
     QualityOptions o = *this;
     o.lowres_sky = o.regularize = false;

@@ -25,8 +25,8 @@ void expect_clean_failure(const CommandResult& r, const std::string& must_mentio
 }
 
 TEST_F(Cli, RendersTheDefaultSceneAndWritesEveryRequestedFormat) {
-  std::string png = (dir_ / "c.png").string(), exr = (dir_ / "c.exr").string(),
-              pfm = (dir_ / "c.pfm").string(), report = (dir_ / "r.json").string();
+  std::string png = path("c.png"), exr = path("c.exr"), pfm = path("c.pfm"),
+              report = path("r.json");
   CommandResult r = run_tuneray({"render", "cornell", "--spp", "2", "--size", "32x24", "--out", png,
                                  "--out", exr, "--out", pfm, "--report", report, "--quiet"});
   ASSERT_FALSE(r.signaled) << r.output;
@@ -35,8 +35,7 @@ TEST_F(Cli, RendersTheDefaultSceneAndWritesEveryRequestedFormat) {
 }
 
 TEST_F(Cli, MissingSceneFileIsNamed) {
-  expect_clean_failure(run_tuneray({"render", (dir_ / "nope.obj").string(), "--quiet"}),
-                       "nope.obj");
+  expect_clean_failure(run_tuneray({"render", path("nope.obj"), "--quiet"}), "nope.obj");
 }
 
 TEST_F(Cli, MalformedObjIsNamed) {
@@ -70,13 +69,13 @@ TEST_F(Cli, BadOptionValuesAreRejected) {
   expect_clean_failure(run_tuneray({"render", "cornell", "--accel", "octree"}), "octree");
   expect_clean_failure(run_tuneray({"render", "cornell", "--camera", "99", "--quiet"}), "camera");
   expect_clean_failure(run_tuneray({"render", "cornell", "--bvh", "quality"}), "quality");
-  expect_clean_failure(run_tuneray({"render", "cornell", "--out", (dir_ / "x.bmp").string(),
-                                    "--spp", "1", "--size", "8x8", "--quiet"}),
+  expect_clean_failure(run_tuneray({"render", "cornell", "--out", path("x.bmp"), "--spp", "1",
+                                    "--size", "8x8", "--quiet"}),
                        "x.bmp");
 }
 
 TEST_F(Cli, FrameBudgetRenderReportsEveryFrame) {
-  std::string exr = (dir_ / "f.exr").string(), report = (dir_ / "f.json").string();
+  std::string exr = path("f.exr"), report = path("f.json");
   CommandResult r = run_tuneray({"render", "cornell", "--size", "16x12", "--frame-ms", "5",
                                  "--frames", "3", "--scheduler", "tile", "--clamp", "4",
                                  "--adaptive", "--out", exr, "--report", report, "--quiet"});

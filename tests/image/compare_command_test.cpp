@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "app/cmd_compare.h"
+#include "common/temp_dir.h"
 #include "image/io.h"
-#include "temp_dir.h"
 
 namespace tuneray {
 namespace {

@@ -5,8 +5,8 @@
 #include <cstring>
 #include <limits>
 
+#include "common/temp_dir.h"
 #include "image/io.h"
-#include "temp_dir.h"
 
 namespace tuneray {
 namespace {

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <string>
 
+#include "common/temp_dir.h"
 #include "image/io.h"
-#include "temp_dir.h"
 
 namespace tuneray {
 namespace {

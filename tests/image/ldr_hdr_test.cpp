@@ -6,9 +6,9 @@
 #include <limits>
 #include <vector>
 
+#include "common/temp_dir.h"
 #include "image/io.h"
 #include "image/srgb.h"
-#include "temp_dir.h"
 
 namespace tuneray {
 namespace {

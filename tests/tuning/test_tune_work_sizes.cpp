@@ -1,19 +1,14 @@
 // `tune --work-sizes` in process: its samples go under their own tuning key, so they never mix
 // with BVH-only samples of the same database, and the BVH-only key is the one it always was.
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
-#include <filesystem>
-
 #include "tuner/hardware_signature.h"
+#include "tuner/temp_path.h"
 #include "tuner/tuning_db.h"
 #include "tuning/tune_session.h"
 
 namespace tuneray {
 namespace {
-
-namespace fs = std::filesystem;
 
 TEST(TuneWorkSizes, TuningKeyDiffersOnlyWithWorkSizes) {
   TuneOptions o;
@@ -27,12 +22,10 @@ TEST(TuneWorkSizes, TuningKeyDiffersOnlyWithWorkSizes) {
 }
 
 TEST(TuneWorkSizes, SamplesAreStoredApartFromBvhOnlyOnes) {
-  fs::path db_path =
-      fs::temp_directory_path() / ("tuneray-work-sizes-" + std::to_string(::getpid()) + ".db");
-  fs::remove(db_path);
+  const tuner::testing::TempPath db_path("tune-work-sizes.db");
   TuneOptions o;
   o.scene = "cornell";
-  o.db_path = db_path.string();
+  o.db_path = db_path.str();
   o.cameras = 1;
   o.iterations = 4;
   o.width = 16;
@@ -54,7 +47,7 @@ TEST(TuneWorkSizes, SamplesAreStoredApartFromBvhOnlyOnes) {
       << with_work.cameras[0].config;
 
   {
-    tuner::TuningDb db(db_path.string());
+    tuner::TuningDb db(db_path.str());
     const std::string hw = tuner::hardware_signature();
     auto bvh_sig = db.find_signature(tuning_key(o), hw);
     auto work_sig = db.find_signature(tuning_key(w), hw);
@@ -73,9 +66,6 @@ TEST(TuneWorkSizes, SamplesAreStoredApartFromBvhOnlyOnes) {
       EXPECT_NE(s.config.find("batch_size="), std::string::npos) << s.config;
     }
   }
-  fs::remove(db_path);
-  fs::remove(db_path.string() + "-wal");
-  fs::remove(db_path.string() + "-shm");
 }
 
 }  // namespace
