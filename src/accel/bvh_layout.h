@@ -15,16 +15,26 @@ inline constexpr size_t kCacheLine = 64;
 using NodeRef = uintptr_t;
 inline constexpr NodeRef kLeafTag = 1;
 inline constexpr NodeRef kEmptyRef = 0;
+// Bits 1..5 of a leaf reference hold its number of triangle packs (fast layout), so the
+// traversal starts on the packs without waiting for the leaf header; every block is 64-byte
+// aligned, so the low 6 bits are free.
+inline constexpr int kLeafCodeShift = 1;
+inline constexpr NodeRef kLeafCodeMax = 31;
+inline constexpr NodeRef kRefLowBits = kCacheLine - 1;
 
 inline bool is_leaf(NodeRef ref) {
   return (ref & kLeafTag) != 0;
 }
 template <class T>
 inline T* ref_ptr(NodeRef ref) {
-  return reinterpret_cast<T*>(ref & ~kLeafTag);
+  return reinterpret_cast<T*>(ref & ~kRefLowBits);
 }
-inline NodeRef make_leaf_ref(const void* p) {
-  return reinterpret_cast<uintptr_t>(p) | kLeafTag;
+// `code` is the pack count of a fast leaf (at most kLeafCodeMax), 0 for a compact leaf.
+inline NodeRef make_leaf_ref(const void* p, uint32_t code = 0) {
+  return reinterpret_cast<uintptr_t>(p) | (NodeRef{code} << kLeafCodeShift) | kLeafTag;
+}
+inline uint32_t leaf_code(NodeRef ref) {
+  return static_cast<uint32_t>((ref & kRefLowBits) >> kLeafCodeShift);
 }
 inline NodeRef make_node_ref(const void* p) {
   return reinterpret_cast<uintptr_t>(p);

@@ -179,56 +179,70 @@ struct NodeTest<2, kCompact, kRobust> {
 
 // ---- leaves: returns true on a hit (any-hit: stop; closest: tfar and hit updated).
 
-template <bool kCompact, bool kRobust, bool kAnyHit>
-inline bool intersect_leaf(const LeafHeader* leaf, const TraversalContext& ctx,
-                           const TraversalRay& r, float& tfar, Hit* hit) {
+template <bool kRobust, bool kAnyHit>
+inline bool intersect_compact_leaf(const LeafHeader* leaf, const TraversalContext& ctx,
+                                   const TraversalRay& r, float& tfar, Hit* hit) {
   bool found = false;
-  if constexpr (kCompact) {
-    const uint32_t* ids = leaf_payload<uint32_t>(leaf);
-    for (uint32_t i = 0; i < leaf->prim_count; ++i) {
-      const Triangle& tri = ctx.triangles[ids[i]];
-      const Vec3f& a = ctx.positions[tri.v[0]];
-      const Vec3f& b = ctx.positions[tri.v[1]];
-      const Vec3f& c = ctx.positions[tri.v[2]];
-      TriangleHit th;
-      bool ok =
-          kRobust ? intersect_watertight(a, b, c, r, tfar, th) : intersect_mt(a, b, c, r, tfar, th);
-      if (!ok) continue;
-      if constexpr (kAnyHit) return true;
-      found = true;
-      tfar = th.t;
-      *hit = Hit{th.t, ids[i], th.u, th.v};
-    }
-  } else {
-    const TriPack4* packs = leaf_payload<TriPack4>(leaf);
-    for (uint32_t k = 0; k < leaf->pack_count; ++k) {
-      const TriPack4& p = packs[k];
-      if constexpr (kRobust) {
-        for (int lane = 0; lane < 4; ++lane) {
-          if (p.prim[lane] == kInvalidId) break;
-          const Vec3f a{p.p[0][lane], p.p[1][lane], p.p[2][lane]};
-          const Vec3f b{p.p[3][lane], p.p[4][lane], p.p[5][lane]};
-          const Vec3f c{p.p[6][lane], p.p[7][lane], p.p[8][lane]};
-          TriangleHit th;
-          if (!intersect_watertight(a, b, c, r, tfar, th)) continue;
-          if constexpr (kAnyHit) return true;
-          found = true;
-          tfar = th.t;
-          *hit = Hit{th.t, p.prim[lane], th.u, th.v};
-        }
-      } else {
-        TriangleHit th[4];
-        int mask = intersect_pack_mt(p.p, r, tfar, th);
-        if (!mask) continue;
+  const uint32_t* ids = leaf_payload<uint32_t>(leaf);
+  for (uint32_t i = 0; i < leaf->prim_count; ++i) {
+    const Triangle& tri = ctx.triangles[ids[i]];
+    const Vec3f& a = ctx.positions[tri.v[0]];
+    const Vec3f& b = ctx.positions[tri.v[1]];
+    const Vec3f& c = ctx.positions[tri.v[2]];
+    TriangleHit th;
+    bool ok =
+        kRobust ? intersect_watertight(a, b, c, r, tfar, th) : intersect_mt(a, b, c, r, tfar, th);
+    if (!ok) continue;
+    if constexpr (kAnyHit) return true;
+    found = true;
+    tfar = th.t;
+    *hit = Hit{th.t, ids[i], th.u, th.v};
+  }
+  return found;
+}
+
+// The pack count comes from the reference, so the packs are read without waiting for the header.
+template <bool kRobust, bool kAnyHit>
+[[gnu::always_inline]] inline bool intersect_fast_leaf(NodeRef ref, const TraversalRay& r,
+                                                       float& tfar, Hit* hit) {
+  bool found = false;
+  const TriPack4* packs = leaf_payload<TriPack4>(ref_ptr<LeafHeader>(ref));
+  const uint32_t pack_count = leaf_code(ref);
+  for (uint32_t k = 0; k < pack_count; ++k) {
+    const TriPack4& p = packs[k];
+    if constexpr (kRobust) {
+      for (int lane = 0; lane < 4; ++lane) {
+        if (p.prim[lane] == kInvalidId) break;
+        const Vec3f a{p.p[0][lane], p.p[1][lane], p.p[2][lane]};
+        const Vec3f b{p.p[3][lane], p.p[4][lane], p.p[5][lane]};
+        const Vec3f c{p.p[6][lane], p.p[7][lane], p.p[8][lane]};
+        TriangleHit th;
+        if (!intersect_watertight(a, b, c, r, tfar, th)) continue;
         if constexpr (kAnyHit) return true;
-        while (mask) {
-          const int lane = __builtin_ctz(mask);
-          mask &= mask - 1;
-          if (th[lane].t < tfar) {
-            found = true;
-            tfar = th[lane].t;
-            *hit = Hit{th[lane].t, p.prim[lane], th[lane].u, th[lane].v};
-          }
+        found = true;
+        tfar = th.t;
+        *hit = Hit{th.t, p.prim[lane], th.u, th.v};
+      }
+    } else {
+      // Two packs per AVX2 pass while two remain, the last odd one with SSE.
+      TriangleHit th[8];
+      int mask;
+      const TriPack4* first = &p;
+      if (k + 1 < pack_count) {
+        mask = intersect_two_packs_mt(p.p, packs[k + 1].p, r, tfar, th);
+        ++k;
+      } else {
+        mask = intersect_pack_mt(p.p, r, tfar, th);
+      }
+      if (!mask) continue;
+      if constexpr (kAnyHit) return true;
+      while (mask) {
+        const int lane = __builtin_ctz(mask);
+        mask &= mask - 1;
+        if (th[lane].t < tfar) {
+          found = true;
+          tfar = th[lane].t;
+          *hit = Hit{th[lane].t, first[lane / 4].prim[lane % 4], th[lane].u, th[lane].v};
         }
       }
     }
@@ -236,11 +250,22 @@ inline bool intersect_leaf(const LeafHeader* leaf, const TraversalContext& ctx,
   return found;
 }
 
+// Brings a block the ray will visit soon into L1 while the current one is tested: the lines of an
+// N-wide node (2, 3 or 4; a leaf's header and first pack span three).
+template <int N>
+inline void prefetch_block(NodeRef ref) {
+  const char* p = ref_ptr<const char>(ref);
+  _mm_prefetch(p, _MM_HINT_T0);
+  _mm_prefetch(p + 64, _MM_HINT_T0);
+  if constexpr (N >= 4) _mm_prefetch(p + 128, _MM_HINT_T0);
+  if constexpr (N >= 8) _mm_prefetch(p + 192, _MM_HINT_T0);
+}
+
 template <int N, bool kCompact, bool kRobust, bool kAnyHit>
 bool traverse(const TraversalContext& ctx, const Ray& ray, Hit* hit) {
   using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
   if (ctx.root == kEmptyRef) return false;
-  const TraversalRay r = make_traversal_ray(ray.org, ray.dir, ray.tnear, ray.tfar);
+  const TraversalRay r = make_traversal_ray(ray.org, ray.dir, ray.tnear, ray.tfar, kRobust);
   float tfar = ray.tfar;
   bool found = false;
   StackEntry stack[kStackSize];
@@ -259,34 +284,76 @@ bool traverse(const TraversalContext& ctx, const Ray& ray, Hit* hit) {
         }
       }
       if (mask == 0) goto pop;
-      const int first = __builtin_ctz(mask);
+      const int i0 = __builtin_ctz(mask);
       mask &= mask - 1;
+      NodeRef c0 = node.child[i0];
       if (mask == 0) {
-        cur = node.child[first];
+        cur = c0;
         continue;
       }
-      // Two or more children: order by entry distance, visit the nearest, stack the rest
-      // farthest first.
-      StackEntry hits[N];
-      int count = 0;
-      hits[count++] = {node.child[first], dist[first]};
-      while (mask) {
-        const int i = __builtin_ctz(mask);
+      if constexpr (kAnyHit) {
+        // Any hit ends the query, so the order costs more than it saves: push the rest as
+        // they come (their distances are never read).
+        do {
+          const int i = __builtin_ctz(mask);
+          mask &= mask - 1;
+          prefetch_block<N>(node.child[i]);
+          stack[sp++] = {node.child[i], 0.0f};
+        } while (mask);
+        cur = c0;
+        continue;
+      } else {
+        const int i1 = __builtin_ctz(mask);
         mask &= mask - 1;
-        StackEntry e{node.child[i], dist[i]};
-        int j = count++;
-        while (j > 0 && hits[j - 1].dist < e.dist) {
-          hits[j] = hits[j - 1];
-          --j;
+        NodeRef c1 = node.child[i1];
+        float d0 = dist[i0], d1 = dist[i1];
+        if (mask == 0) {
+          // Two children, the common case: visit the nearer, push the farther.
+          if (d1 < d0) {
+            std::swap(c0, c1);
+            std::swap(d0, d1);
+          }
+          prefetch_block<N>(c1);
+          stack[sp++] = {c1, d1};
+          cur = c0;
+          continue;
         }
-        hits[j] = e;  // descending by distance
+        // Three or more: push all, sort the new entries by descending distance (insertion
+        // sort over at most N), continue with the nearest.
+        StackEntry* base = stack + sp;
+        base[0] = {c0, d0};
+        base[1] = {c1, d1};
+        int count = 2;
+        do {
+          const int i = __builtin_ctz(mask);
+          mask &= mask - 1;
+          base[count++] = {node.child[i], dist[i]};
+        } while (mask);
+        for (int a = 1; a < count; ++a) {
+          const StackEntry e = base[a];
+          int b = a;
+          while (b > 0 && base[b - 1].dist < e.dist) {
+            base[b] = base[b - 1];
+            --b;
+          }
+          base[b] = e;
+        }
+        for (int a = 0; a < count - 1; ++a) prefetch_block<N>(base[a].ref);
+        sp += count - 1;
+        cur = base[count - 1].ref;
       }
-      for (int i = 0; i < count - 1; ++i) stack[sp++] = hits[i];
-      cur = hits[count - 1].ref;
     }
-    if (intersect_leaf<kCompact, kRobust, kAnyHit>(ref_ptr<LeafHeader>(cur), ctx, r, tfar, hit)) {
-      if constexpr (kAnyHit) return true;
-      found = true;
+    {
+      bool leaf_hit;
+      if constexpr (kCompact)
+        leaf_hit =
+            intersect_compact_leaf<kRobust, kAnyHit>(ref_ptr<LeafHeader>(cur), ctx, r, tfar, hit);
+      else
+        leaf_hit = intersect_fast_leaf<kRobust, kAnyHit>(cur, r, tfar, hit);
+      if (leaf_hit) {
+        if constexpr (kAnyHit) return true;
+        found = true;
+      }
     }
   pop:
     for (;;) {

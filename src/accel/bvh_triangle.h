@@ -28,8 +28,10 @@ struct TraversalRay {
   float sx = 0, sy = 0, sz = 1;
 };
 
-inline TraversalRay make_traversal_ray(const Vec3f& org, const Vec3f& dir, float tnear,
-                                       float tfar) {
+// `watertight`: also set up the shear of the watertight test (three more divisions, which the
+// fast test does not need).
+inline TraversalRay make_traversal_ray(const Vec3f& org, const Vec3f& dir, float tnear, float tfar,
+                                       bool watertight = true) {
   TraversalRay r;
   r.org = org;
   r.dir = dir;
@@ -42,6 +44,7 @@ inline TraversalRay make_traversal_ray(const Vec3f& org, const Vec3f& dir, float
     r.org_inv[a] = org[a] * r.inv[a];
     r.near_row[a] = d >= 0 ? a : a + 3;
   }
+  if (!watertight) return r;
   Vec3f ad{std::fabs(dir.x), std::fabs(dir.y), std::fabs(dir.z)};
   r.kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
   r.kx = (r.kz + 1) % 3;
@@ -57,48 +60,110 @@ struct TriangleHit {
   float t, u, v;
 };
 
-// Lanes (bits 0..3) of the pack hit in (tnear, tfar); fills t/u/v of those lanes.
-inline int intersect_pack_mt(const float (*p)[4], const TraversalRay& r, float tfar,
-                             TriangleHit out[4]) {
-  const __m128 ox = _mm_set1_ps(r.org.x), oy = _mm_set1_ps(r.org.y), oz = _mm_set1_ps(r.org.z);
-  const __m128 dx = _mm_set1_ps(r.dir.x), dy = _mm_set1_ps(r.dir.y), dz = _mm_set1_ps(r.dir.z);
-  const __m128 e1x = _mm_load_ps(p[3]), e1y = _mm_load_ps(p[4]), e1z = _mm_load_ps(p[5]);
-  const __m128 e2x = _mm_load_ps(p[6]), e2y = _mm_load_ps(p[7]), e2z = _mm_load_ps(p[8]);
+// The Möller-Trumbore test is written once over a SIMD width: 4 lanes (SSE, one pack) or 8 lanes
+// (AVX2, two packs side by side). Each lane computes exactly the same operations at either width,
+// so a triangle gives the same t, u, v whichever path tests it.
+struct Lanes4 {
+  using V = __m128;
+  static constexpr int kWidth = 4;
+  static V set1(float x) { return _mm_set1_ps(x); }
+  static V add(V a, V b) { return _mm_add_ps(a, b); }
+  static V sub(V a, V b) { return _mm_sub_ps(a, b); }
+  static V mul(V a, V b) { return _mm_mul_ps(a, b); }
+  static V div(V a, V b) { return _mm_div_ps(a, b); }
+  static V fmadd(V a, V b, V c) { return _mm_fmadd_ps(a, b, c); }
+  static V fmsub(V a, V b, V c) { return _mm_fmsub_ps(a, b, c); }
+  static V and_(V a, V b) { return _mm_and_ps(a, b); }
+  static V xor_(V a, V b) { return _mm_xor_ps(a, b); }
+  static V gt(V a, V b) { return _mm_cmpgt_ps(a, b); }
+  static V ge(V a, V b) { return _mm_cmpge_ps(a, b); }
+  static V le(V a, V b) { return _mm_cmple_ps(a, b); }
+  static V lt(V a, V b) { return _mm_cmplt_ps(a, b); }
+  static int movemask(V a) { return _mm_movemask_ps(a); }
+  static void store(float* p, V a) { _mm_store_ps(p, a); }
+};
+
+struct Lanes8 {
+  using V = __m256;
+  static constexpr int kWidth = 8;
+  static V set1(float x) { return _mm256_set1_ps(x); }
+  static V add(V a, V b) { return _mm256_add_ps(a, b); }
+  static V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+  static V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+  static V div(V a, V b) { return _mm256_div_ps(a, b); }
+  static V fmadd(V a, V b, V c) { return _mm256_fmadd_ps(a, b, c); }
+  static V fmsub(V a, V b, V c) { return _mm256_fmsub_ps(a, b, c); }
+  static V and_(V a, V b) { return _mm256_and_ps(a, b); }
+  static V xor_(V a, V b) { return _mm256_xor_ps(a, b); }
+  static V gt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
+  static V ge(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
+  static V le(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
+  static V lt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
+  static int movemask(V a) { return _mm256_movemask_ps(a); }
+  static void store(float* p, V a) { _mm256_storeu_ps(p, a); }
+};
+
+// rows: v0.xyz, e1.xyz, e2.xyz of kWidth triangles. Returns the lanes hit in (tnear, tfar) and
+// fills t/u/v of those lanes.
+template <class L>
+inline int intersect_lanes_mt(const typename L::V (&rows)[9], const TraversalRay& r, float tfar,
+                              TriangleHit* out) {
+  using V = typename L::V;
+  const V ox = L::set1(r.org.x), oy = L::set1(r.org.y), oz = L::set1(r.org.z);
+  const V dx = L::set1(r.dir.x), dy = L::set1(r.dir.y), dz = L::set1(r.dir.z);
+  const V e1x = rows[3], e1y = rows[4], e1z = rows[5];
+  const V e2x = rows[6], e2y = rows[7], e2z = rows[8];
   // P = D x E2, det = E1 . P
-  const __m128 px = _mm_fmsub_ps(dy, e2z, _mm_mul_ps(dz, e2y));
-  const __m128 py = _mm_fmsub_ps(dz, e2x, _mm_mul_ps(dx, e2z));
-  const __m128 pz = _mm_fmsub_ps(dx, e2y, _mm_mul_ps(dy, e2x));
-  const __m128 det = _mm_fmadd_ps(e1x, px, _mm_fmadd_ps(e1y, py, _mm_mul_ps(e1z, pz)));
+  const V px = L::fmsub(dy, e2z, L::mul(dz, e2y));
+  const V py = L::fmsub(dz, e2x, L::mul(dx, e2z));
+  const V pz = L::fmsub(dx, e2y, L::mul(dy, e2x));
+  const V det = L::fmadd(e1x, px, L::fmadd(e1y, py, L::mul(e1z, pz)));
   // T = O - v0, u = T . P, Q = T x E1, v = D . Q, t = E2 . Q
-  const __m128 tx = _mm_sub_ps(ox, _mm_load_ps(p[0]));
-  const __m128 ty = _mm_sub_ps(oy, _mm_load_ps(p[1]));
-  const __m128 tz = _mm_sub_ps(oz, _mm_load_ps(p[2]));
-  const __m128 sign = _mm_and_ps(det, _mm_set1_ps(-0.0f));
-  const __m128 abs_det = _mm_xor_ps(det, sign);
-  const __m128 u = _mm_xor_ps(_mm_fmadd_ps(tx, px, _mm_fmadd_ps(ty, py, _mm_mul_ps(tz, pz))), sign);
-  const __m128 qx = _mm_fmsub_ps(ty, e1z, _mm_mul_ps(tz, e1y));
-  const __m128 qy = _mm_fmsub_ps(tz, e1x, _mm_mul_ps(tx, e1z));
-  const __m128 qz = _mm_fmsub_ps(tx, e1y, _mm_mul_ps(ty, e1x));
-  const __m128 v = _mm_xor_ps(_mm_fmadd_ps(dx, qx, _mm_fmadd_ps(dy, qy, _mm_mul_ps(dz, qz))), sign);
-  const __m128 t =
-      _mm_xor_ps(_mm_fmadd_ps(e2x, qx, _mm_fmadd_ps(e2y, qy, _mm_mul_ps(e2z, qz))), sign);
-  const __m128 zero = _mm_setzero_ps();
-  __m128 valid = _mm_cmpgt_ps(abs_det, zero);
-  valid = _mm_and_ps(valid, _mm_cmpge_ps(u, zero));
-  valid = _mm_and_ps(valid, _mm_cmpge_ps(v, zero));
-  valid = _mm_and_ps(valid, _mm_cmple_ps(_mm_add_ps(u, v), abs_det));
-  valid = _mm_and_ps(valid, _mm_cmpgt_ps(t, _mm_mul_ps(abs_det, _mm_set1_ps(r.tnear))));
-  valid = _mm_and_ps(valid, _mm_cmplt_ps(t, _mm_mul_ps(abs_det, _mm_set1_ps(tfar))));
-  int mask = _mm_movemask_ps(valid);
+  const V tx = L::sub(ox, rows[0]);
+  const V ty = L::sub(oy, rows[1]);
+  const V tz = L::sub(oz, rows[2]);
+  const V sign = L::and_(det, L::set1(-0.0f));
+  const V abs_det = L::xor_(det, sign);
+  const V u = L::xor_(L::fmadd(tx, px, L::fmadd(ty, py, L::mul(tz, pz))), sign);
+  const V qx = L::fmsub(ty, e1z, L::mul(tz, e1y));
+  const V qy = L::fmsub(tz, e1x, L::mul(tx, e1z));
+  const V qz = L::fmsub(tx, e1y, L::mul(ty, e1x));
+  const V v = L::xor_(L::fmadd(dx, qx, L::fmadd(dy, qy, L::mul(dz, qz))), sign);
+  const V t = L::xor_(L::fmadd(e2x, qx, L::fmadd(e2y, qy, L::mul(e2z, qz))), sign);
+  const V zero = L::set1(0.0f);
+  V valid = L::gt(abs_det, zero);
+  valid = L::and_(valid, L::ge(u, zero));
+  valid = L::and_(valid, L::ge(v, zero));
+  valid = L::and_(valid, L::le(L::add(u, v), abs_det));
+  valid = L::and_(valid, L::gt(t, L::mul(abs_det, L::set1(r.tnear))));
+  valid = L::and_(valid, L::lt(t, L::mul(abs_det, L::set1(tfar))));
+  const int mask = L::movemask(valid);
   if (mask) {
-    const __m128 rcp = _mm_div_ps(_mm_set1_ps(1.0f), abs_det);
-    alignas(16) float ts[4], us[4], vs[4];
-    _mm_store_ps(ts, _mm_mul_ps(t, rcp));
-    _mm_store_ps(us, _mm_mul_ps(u, rcp));
-    _mm_store_ps(vs, _mm_mul_ps(v, rcp));
-    for (int i = 0; i < 4; ++i) out[i] = {ts[i], us[i], vs[i]};
+    const V rcp = L::div(L::set1(1.0f), abs_det);
+    alignas(32) float ts[L::kWidth], us[L::kWidth], vs[L::kWidth];
+    L::store(ts, L::mul(t, rcp));
+    L::store(us, L::mul(u, rcp));
+    L::store(vs, L::mul(v, rcp));
+    for (int i = 0; i < L::kWidth; ++i) out[i] = {ts[i], us[i], vs[i]};
   }
   return mask;
+}
+
+// Lanes (bits 0..3) of one pack hit in (tnear, tfar); fills t/u/v of those lanes.
+inline int intersect_pack_mt(const float (*p)[4], const TraversalRay& r, float tfar,
+                             TriangleHit out[4]) {
+  __m128 rows[9];
+  for (int k = 0; k < 9; ++k) rows[k] = _mm_load_ps(p[k]);
+  return intersect_lanes_mt<Lanes4>(rows, r, tfar, out);
+}
+
+// Two packs in one AVX2 pass: lanes 0..3 are pack a, 4..7 pack b.
+inline int intersect_two_packs_mt(const float (*a)[4], const float (*b)[4], const TraversalRay& r,
+                                  float tfar, TriangleHit out[8]) {
+  __m256 rows[9];
+  for (int k = 0; k < 9; ++k)
+    rows[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(a[k])), _mm_load_ps(b[k]), 1);
+  return intersect_lanes_mt<Lanes8>(rows, r, tfar, out);
 }
 
 // Scalar Möller-Trumbore on raw vertices (compact layout, non-robust).

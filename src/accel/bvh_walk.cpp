@@ -50,6 +50,7 @@ struct Walker {
       s.max_leaf_size = std::max<size_t>(s.max_leaf_size, leaf->prim_count);
       s.leaf_bytes += leaf_bytes(leaf, kCompact);
       s.sah_cost += isect * area * leaf->prim_count;
+      if (!kCompact && leaf_code(ref) != leaf->pack_count) s.leaf_code_mismatches++;
       return;
     }
     const Node& n = *ref_ptr<Node>(ref);
@@ -97,7 +98,7 @@ struct Walker {
     if (is_leaf(ref)) {
       const auto* leaf = ref_ptr<LeafHeader>(ref);
       std::memcpy(dst, leaf, leaf_bytes(leaf, kCompact));
-      return make_leaf_ref(dst);
+      return make_leaf_ref(dst, leaf_code(ref));
     }
     std::memcpy(dst, ref_ptr<Node>(ref), sizeof(Node));
     return make_node_ref(dst);

@@ -17,6 +17,9 @@ struct TreeStats {
   double sah_cost = 0;  // trav * sum A(node)/A(root) + int * sum A(leaf)/A(root) * refs
   size_t node_bytes = 0;
   size_t leaf_bytes = 0;
+  // Fast leaves whose reference does not carry their header's pack count (always 0 for a
+  // correct tree: the traversal reads the count from the reference).
+  size_t leaf_code_mismatches = 0;
 };
 
 TreeStats measure_tree(const Tree& tree, double trav_cost, double int_cost);

@@ -64,6 +64,20 @@ TEST_F(Parameters, SahBlockSizeChangesTheTree) {
   EXPECT_NE(b1.stats.sah_cost, b16.stats.sah_cost);
 }
 
+// The traversal takes a fast leaf's pack count from its reference: every leaf of every width,
+// quality and leaf size (up to 8 packs at max_leaf=32), and after the static relayout, must carry
+// the count of its header.
+TEST_F(Parameters, LeafReferencesCarryThePackCount) {
+  for (const char* text : {"branching=2", "branching=4,max_leaf=32,min_leaf=8,sah_block_size=16",
+                           "branching=8,max_leaf=5", "branching=8,quality=high,max_leaf=8",
+                           "branching=8,quality=low,min_leaf=8", "branching=8,static=1,max_leaf=16",
+                           "branching=4,robust=1,max_leaf=7"}) {
+    Built b = build(text);
+    EXPECT_GT(b.tree.leaf_count, 0u) << text;
+    EXPECT_EQ(b.tree.leaf_code_mismatches, 0u) << text;
+  }
+}
+
 TEST_F(Parameters, MinLeafMakesLeavesLarger) {
   Built m1 = build("min_leaf=1"), m8 = build("min_leaf=8");
   EXPECT_LT(m8.stats.leaf_count, m1.stats.leaf_count);
