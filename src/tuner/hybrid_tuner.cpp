@@ -32,6 +32,12 @@ void validate(const Space& space, const TunerOptions& options) {
   if (!space.satisfies_constraints(space.default_config())) {
     throw std::invalid_argument("Space: the default configuration violates a constraint");
   }
+  for (const Config& seed : options.search_seeds) {
+    if (seed.size() != space.size() || !space.satisfies_constraints(seed)) {
+      throw std::invalid_argument("TunerOptions: search seed '" + seed.to_string() +
+                                  "' is not a feasible configuration of the space");
+    }
+  }
 }
 
 }  // namespace
@@ -178,7 +184,10 @@ void HybridTuner::start_search(StateData& state, const std::optional<Prediction>
   const Config start = state.best && std::isfinite(state.best_cost) ? *state.best
                        : prediction                                 ? prediction->config
                                                                     : space_.default_config();
-  state.search.emplace(space_, options_.search, space_.encode(start), rng_.next_u64());
+  std::vector<std::vector<double>> seeds;
+  for (const Config& c : options_.search_seeds) seeds.push_back(space_.encode(c));
+  state.search.emplace(space_, options_.search, space_.encode(start), rng_.next_u64(),
+                       std::move(seeds));
   emit(TunerEventKind::kSearchStarted, state.id, start);
 }
 

@@ -41,7 +41,8 @@ NelderMead::NelderMead(const Space& space, const NelderMeadOptions& options)
     : space_(&space), options_(options) {}
 
 NelderMead::NelderMead(const Space& space, const NelderMeadOptions& options,
-                       std::vector<double> start, uint64_t seed)
+                       std::vector<double> start, uint64_t seed,
+                       std::vector<std::vector<double>> seeds)
     : space_(&space), options_(options), rng_(seed) {
   if (start.size() != space.size()) throw std::invalid_argument("NelderMead: bad start point");
   if (options.max_repeats < options.min_repeats || options.min_repeats < 1) {
@@ -49,15 +50,30 @@ NelderMead::NelderMead(const Space& space, const NelderMeadOptions& options,
   }
   repeats_ = options.min_repeats;
   space.feasible(start);
-  build_simplex(start, options.initial_radius);
+  for (const auto& point : seeds) {
+    if (point.size() != space.size()) throw std::invalid_argument("NelderMead: bad seed point");
+  }
+  build_simplex(start, options.initial_radius, std::move(seeds));
   initial_size_ = size();
   if (space.size() == 0) finish(true);
 }
 
-void NelderMead::build_simplex(const std::vector<double>& centre, double radius) {
+void NelderMead::build_simplex(const std::vector<double>& centre, double radius,
+                               std::vector<std::vector<double>> seeds) {
   const size_t dims = centre.size();
   vertices_.assign(1, centre);
-  for (auto& unit : latin_hypercube(dims, dims, rng_)) {
+  // Seeds first (as configurations: two points that round to one configuration are one seed).
+  std::vector<Config> taken = {space_->decode(centre)};
+  for (auto& point : seeds) {
+    if (vertices_.size() > dims) break;
+    space_->feasible(point);
+    Config config = space_->decode(point);
+    if (std::find(taken.begin(), taken.end(), config) != taken.end()) continue;
+    taken.push_back(std::move(config));
+    vertices_.push_back(std::move(point));
+  }
+  const size_t lhs_points = dims + 1 - vertices_.size();
+  for (auto& unit : latin_hypercube(lhs_points, dims, rng_)) {
     for (size_t d = 0; d < dims; ++d) {
       // A discrete coordinate gets at least one cell on each side, so that a small simplex
       // still reaches the neighbouring values instead of sitting on one plateau.

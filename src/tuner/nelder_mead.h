@@ -10,7 +10,10 @@
 // - First simplex: the start point (the default configuration, or a warm start) plus n points
 //   drawn by Latin Hypercube sampling in a box of half-width `initial_radius` [0.25] around it
 //   (shifted to stay inside [0,1]^n), so the n edges point in well spread directions. A discrete
-//   coordinate's box is at least one value wide on each side.
+//   coordinate's box is at least one value wide on each side. Seed points given by the caller
+//   (configurations known to be good in general) replace the first LHS points, so the first
+//   comparison already includes them and the search can only end at least as good as the best
+//   of them (up to noise).
 // - Moves: the classic reflection [1], expansion [2], outside/inside contraction [0.5] and
 //   shrink [0.5]; every new point is clamped to [0,1]^n and repaired to satisfy the constraints
 //   (Space::feasible), so a move never leaves the feasible set.
@@ -73,9 +76,10 @@ class NelderMead {
   // Every cost recorded for a configuration in the current state, or nullptr if none.
   using Lookup = std::function<const std::vector<double>*(const Config&)>;
 
-  // `start` is a normalised point; `space` must outlive the search.
+  // `start` and `seeds` are normalised points; `space` must outlive the search. At most n seeds
+  // are used (n = dimensions); seeds equal to the start point or to each other are skipped.
   NelderMead(const Space& space, const NelderMeadOptions& options, std::vector<double> start,
-             uint64_t seed);
+             uint64_t seed, std::vector<std::vector<double>> seeds = {});
 
   // The configuration to measure next, or nullopt once the search has finished. Calling it
   // again without a new measurement returns the same configuration.
@@ -104,7 +108,8 @@ class NelderMead {
 
   NelderMead(const Space& space, const NelderMeadOptions& options);
   std::optional<Config> advance(const Lookup& lookup);
-  void build_simplex(const std::vector<double>& centre, double radius);
+  void build_simplex(const std::vector<double>& centre, double radius,
+                     std::vector<std::vector<double>> seeds = {});
   bool needs_measurement(const Lookup& lookup, const Config& config, int repeats) const;
   double value(const Lookup& lookup, const std::vector<double>& point) const;
   void sort_vertices(const Lookup& lookup);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "tuner/greedy_gq.h"
 #include "tuner/nelder_mead.h"
@@ -28,6 +29,10 @@ struct TunerOptions {
   uint64_t seed = 1;
   // The search; its max_iterations (80) is the search budget per state.
   NelderMeadOptions search;
+  // Configurations known to be good in general (e.g. an expert's settings): every new search
+  // puts them in its first simplex beside its start point, so they are measured in each state
+  // and the search starts from the best of them. Empty: start point and Latin Hypercube only.
+  std::vector<Config> search_seeds;
   GreedyGqOptions gq;
   // -log cost trained better than 1/cost in our synthetic bandit test (see docs/tuner.md).
   RewardKind reward = RewardKind::kNegLog;

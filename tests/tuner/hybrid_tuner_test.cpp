@@ -176,6 +176,30 @@ TEST(HybridTuner, RejectsMisuse) {
   TunerOptions bad;
   bad.epsilon = 2.0;
   EXPECT_THROW(HybridTuner(kernel_space(), kernel_schema(), bad), std::invalid_argument);
+  TunerOptions foreign_seed;
+  Space other;
+  other.add_int("x", 0, 3, 0);
+  foreign_seed.search_seeds = {other.default_config()};
+  EXPECT_THROW(HybridTuner(kernel_space(), kernel_schema(), foreign_seed), std::invalid_argument);
+}
+
+// A search seed is measured in the first simplex of every new search.
+TEST(HybridTuner, SearchSeedsAreMeasuredInEverySearch) {
+  TunerOptions options = fast_options(1.0);
+  Config seed = kernel_space().default_config();
+  seed.set_int("block", 64).set_int("unroll", 4);
+  options.search_seeds = {seed};
+  HybridTuner tuner(kernel_space(), kernel_schema(), options);
+  for (double size : {100.0, 700.0}) {
+    const State state{size};
+    bool measured = false;
+    for (int i = 0; i < 6; ++i) {
+      const Config c = tuner.suggest(state);
+      measured |= c == seed;
+      tuner.report(c, kernel_cost(state, c));
+    }
+    EXPECT_TRUE(measured) << "state " << size;
+  }
 }
 
 }  // namespace

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <unordered_set>
 
 #include "test_functions.h"
 #include "tuner/space.h"
@@ -100,6 +102,47 @@ TEST(NelderMead, FindsMixedIntegerEnumMinimum) {
   }
   std::printf("%d of %d seeds found the minimum\n", successes, kSeeds);
   EXPECT_GE(successes, kRequiredSuccesses);
+}
+
+// Seeds: a plateau (cost 100) with one narrow basin far from the default (all zeros). A seed
+// inside the basin is measured among the first simplex's points, and every seeded search ends
+// at least as good as the seed; unseeded searches from the default mostly never see the basin.
+TEST(NelderMead, SeedsJoinTheFirstSimplexAndTheSearchEndsNoWorse) {
+  Space space;
+  for (const char* name : {"a", "b", "c", "d", "e", "f"}) space.add_int(name, 0, 20, 0);
+  auto cost = [](const Config& c) {
+    double d2 = 0;
+    for (const char* name : {"a", "b", "c", "d", "e", "f"}) {
+      const double d = c.get_int(name) - 17;
+      d2 += d * d;
+    }
+    return d2 < 30 ? 1.0 + d2 : 100.0;
+  };
+  Config seed = space.default_config();
+  for (const char* name : {"a", "b", "c", "d", "e", "f"}) seed.set_int(name, 15);
+  const double seed_cost = cost(seed);  // 25: inside the basin, not at its bottom
+  int unseeded_in_basin = 0;
+  for (int s = 0; s < 20; ++s) {
+    const std::vector<double> start = space.encode(space.default_config());
+    NelderMead seeded(space, NelderMeadOptions{}, start, s, {space.encode(seed), start});
+    std::vector<Config> order;
+    const auto run = run_search(seeded, [&](const Config& c) {
+      order.push_back(c);
+      return cost(c);
+    });
+    ASSERT_GE(order.size(), space.size() + 1);
+    const auto first = order.begin() + static_cast<std::ptrdiff_t>(space.size() + 1);
+    EXPECT_NE(std::find(order.begin(), first, seed), first) << "seed " << s;
+    EXPECT_LE(cost(run.incumbent), seed_cost) << "seed " << s;
+    // The seed equal to the start point is skipped: the first simplex has n + 1 distinct points.
+    const std::unordered_set<Config, ConfigHash> distinct(order.begin(), first);
+    EXPECT_EQ(distinct.size(), space.size() + 1) << "seed " << s;
+
+    NelderMead plain(space, NelderMeadOptions{}, start, s);
+    unseeded_in_basin += cost(run_search(plain, cost).incumbent) < 100.0;
+  }
+  std::printf("%d of 20 unseeded searches reached the basin\n", unseeded_in_basin);
+  EXPECT_LT(unseeded_in_basin, 10);
 }
 
 TEST(NelderMead, NeverMeasuresARoundedDuplicateTwiceWithoutWantingMoreRepeats) {
