@@ -13,6 +13,7 @@
 #include "render/light_sampler.h"
 #include "render/render_settings.h"
 #include "render/sampler.h"
+#include "render/surface.h"
 #include "scene/scene.h"
 
 namespace tuneray {
@@ -69,6 +70,15 @@ class PathIntegrator {
   void shade(PathState& state, bool found, const Hit& hit, Sampler& sampler,
              ShadowRequest& shadow) const;
   Color finish(const PathState& state, PathCounters& counters, float clamp) const;
+  // Prefetches, in two steps, what shade() will read about a hit (surface.h); a batch scheduler
+  // calls step 0 far ahead and step 1 nearer.
+  void prefetch_hit(const Hit& hit, int step) const {
+    if (!hit.valid()) return;
+    if (step == 0)
+      prefetch_hit_triangle(scene_, hit.prim);
+    else
+      prefetch_hit_vertices(scene_, hit.prim);
+  }
 
   const LightSampler& lights() const { return lights_; }
   const Accel& accel() const { return accel_; }

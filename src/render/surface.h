@@ -1,6 +1,8 @@
 // What the integrator knows about a hit: position, normals, shading frame, UV, material.
 #pragma once
 
+#include <immintrin.h>
+
 #include <cstdint>
 
 #include "math/frame.h"
@@ -20,6 +22,23 @@ struct SurfaceInteraction {
 };
 
 SurfaceInteraction make_interaction(const Scene& scene, const Hit& hit);
+
+// What make_interaction reads lies in five arrays at random places for incoherent hits, so a
+// batch of hits waits on memory hit after hit. A scheduler that knows the hits ahead prefetches
+// in two steps: first the triangle's vertex indices and material id, then (once the indices have
+// arrived) the vertices' positions, normals and UVs.
+inline void prefetch_hit_triangle(const Scene& scene, uint32_t prim) {
+  _mm_prefetch(reinterpret_cast<const char*>(&scene.triangles[prim]), _MM_HINT_T0);
+  _mm_prefetch(reinterpret_cast<const char*>(&scene.material_ids[prim]), _MM_HINT_T0);
+}
+inline void prefetch_hit_vertices(const Scene& scene, uint32_t prim) {
+  const Triangle& t = scene.triangles[prim];
+  for (uint32_t v : t.v) {
+    _mm_prefetch(reinterpret_cast<const char*>(&scene.positions[v]), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(&scene.normals[v]), _MM_HINT_T0);
+    if (!scene.uvs.empty()) _mm_prefetch(reinterpret_cast<const char*>(&scene.uvs[v]), _MM_HINT_T0);
+  }
+}
 
 // Resolves textures: the BSDF parameters at this point.
 BsdfParams resolve_bsdf(const Scene& scene, const SurfaceInteraction& si);

@@ -233,7 +233,14 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
             b.shadow_owner.clear();
             b.shadow_contribution.clear();
             b.next_queue.clear();
+            // Hit data arrives while earlier hits are shaded: indices kFar hits ahead,
+            // vertices kNear ahead (their indices prefetched kFar - kNear hits ago).
+            constexpr size_t kFar = 16, kNear = 8;
+            for (size_t i = 0; i < std::min(n, kFar); ++i) integrator_.prefetch_hit(b.hits[i], 0);
+            for (size_t i = 0; i < std::min(n, kNear); ++i) integrator_.prefetch_hit(b.hits[i], 1);
             for (size_t i = 0; i < n; ++i) {
+              if (i + kFar < n) integrator_.prefetch_hit(b.hits[i + kFar], 0);
+              if (i + kNear < n) integrator_.prefetch_hit(b.hits[i + kNear], 1);
               uint32_t q = b.queue[i];
               ShadowRequest shadow;
               integrator_.shade(b.states[q], b.hits[i].valid(), b.hits[i], *b.samplers[q], shadow);
