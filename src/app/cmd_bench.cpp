@@ -49,7 +49,23 @@ CommandAction add_bench_command(CLI::App& app) {
   CLI::App* t = bench->add_subcommand(
       "traversal", "Tuned BVH vs Embree native: Mrays/s on primary, incoherent and shadow rays");
   add_accel_options(t);
-  CLI::App* b = bench->add_subcommand("build", "Build time, nodes, leaves, SAH cost and memory");
+  t->add_flag("--cpu-time", accel->cpu_time,
+              "Time the ray sets by the process's CPU time instead of wall time (steadier on a "
+              "shared machine; rates are then per CPU-second)");
+  t->add_flag("!--no-render", accel->render,
+              "Skip the render-level run (native vs the best configuration, whole frames)");
+  t->add_option("--size", accel->size, "Frame size of the render-level run")->capture_default_str();
+  t->add_option("--spp", accel->spp, "Samples per pixel of a render-level frame")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  t->add_option("--scheduler", accel->scheduler, "Scheduler of the render-level run")
+      ->check(CLI::IsMember({"tile", "wavefront"}))
+      ->capture_default_str();
+  t->add_option("--db", accel->db,
+                "Render the best configuration of this `tune` database (same --size, --spp, "
+                "--scheduler) instead of the table's best");
+  CLI::App* b = bench->add_subcommand(
+      "build", "Build time vs Embree native at the same quality (interleaved), tree shape, memory");
   add_accel_options(b);
 
   auto quality = std::make_shared<BenchQualityArgs>();

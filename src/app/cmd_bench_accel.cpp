@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <time.h>
 #include <unistd.h>
 #include <algorithm>
 #include <atomic>
@@ -14,12 +15,14 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "accel/build_bench.h"
 #include "accel/embree_native.h"
 #include "accel/tuned_bvh.h"
+#include "app/cli_parse.h"
 #include "app/scene_paths.h"
 #include "math/rng.h"
 #include "scene/load.h"
-
+#include "tuning/render_vs_native.h"
 #include "tuning/stats.h"
 
 namespace tuneray {
@@ -133,9 +136,17 @@ std::vector<RaySet> make_ray_sets(const Scene& scene, const Accel& reference, si
   return {std::move(primary), std::move(bounce), std::move(shadow)};
 }
 
-// Seconds for one pass over the set, all threads.
-double trace_seconds(const Accel& accel, const RaySet& set) {
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + ts.tv_nsec * 1e-9;
+}
+
+// Seconds for one pass over the set, all threads: wall time, or the CPU time of all threads
+// (which other processes on a shared machine do not inflate by taking turns on the cores).
+double trace_seconds(const Accel& accel, const RaySet& set, bool cpu_time = false) {
   std::atomic<size_t> sink{0};
+  const double cpu_start = cpu_time ? cpu_seconds() : 0.0;
   auto start = Clock::now();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, set.rays.size(), 1024),
                     [&](const tbb::blocked_range<size_t>& range) {
@@ -150,7 +161,7 @@ double trace_seconds(const Accel& accel, const RaySet& set) {
                       }
                       sink += hits;
                     });
-  double s = ms_since(start) / 1000.0;
+  double s = cpu_time ? cpu_seconds() - cpu_start : ms_since(start) / 1000.0;
   return sink.load() == size_t(-1) ? 0 : s;
 }
 
@@ -203,12 +214,55 @@ bool write_json(const std::string& path, const nlohmann::json& j) {
   return true;
 }
 
+// The render-level run after a scene's table: native Embree against the database's best
+// configuration for the scene's camera, or else the table's best on incoherent rays.
+nlohmann::json render_run(const BenchAccelArgs& args, const Scene& scene, const BvhConfig& best) {
+  RenderVsNativeOptions o;
+  std::tie(o.width, o.height) = parse_size(args.size);
+  o.spp = args.spp;
+  o.repeats = std::max(1, args.repeats);
+  o.wavefront = args.scheduler == "wavefront";
+  const CameraDesc& camera = scene.cameras.front();
+  AccelChoice chosen = AccelChoice::tuned(best);
+  std::string source = "best of the table on incoherent rays";
+  if (!args.db.empty()) {
+    auto found = best_in_database(args.db, scene, camera, o);
+    if (!found)
+      throw std::runtime_error("bench traversal: " + args.db + " holds no `tune --objective " +
+                               "render` data for " + args.size + ", " + std::to_string(o.spp) +
+                               " spp, " + args.scheduler + " on this machine");
+    chosen = found->choice;
+    source = "best in " + args.db + " (" + found->tuning_key + ")";
+  }
+  RenderVsNative r = render_vs_native(scene, camera, chosen, o);
+  std::printf(
+      "render %dx%d, %u spp, %s scheduler, first camera, median of %d: native %.2f ms, "
+      "chosen %.2f ms -> %.3fx native\n  chosen: %s\n  (%s)\n",
+      o.width, o.height, o.spp, args.scheduler.c_str(), o.repeats, r.native_median_ms,
+      r.chosen_median_ms, r.speedup(), r.config.c_str(), source.c_str());
+  std::fflush(stdout);
+  return {{"size", args.size},
+          {"spp", o.spp},
+          {"scheduler", args.scheduler},
+          {"repeats", o.repeats},
+          {"config", r.config},
+          {"source", source},
+          {"native_ms", r.native_ms},
+          {"chosen_ms", r.chosen_ms},
+          {"native_median_ms", r.native_median_ms},
+          {"chosen_median_ms", r.chosen_median_ms},
+          {"native_build_ms", r.native_build_ms},
+          {"chosen_build_ms", r.chosen_build_ms},
+          {"speedup_over_native", r.speedup()}};
+}
+
 }  // namespace
 
 int run_bench_traversal(const BenchAccelArgs& args) {
   auto threads = limit_threads(args.threads);
   const int repeats = std::max(1, args.repeats);
   const BvhConfig base = parse_bvh_config(args.bvh);
+  if (args.render) parse_size(args.size);  // a bad size fails now, not after the tables
   auto scenes = scene_list(args);
   if (scenes.empty()) {
     std::fprintf(stderr, "bench traversal: no scene given and no shared scenes found\n");
@@ -234,6 +288,7 @@ int run_bench_traversal(const BenchAccelArgs& args) {
     auto configs = args.sweep ? sweep_configs(base.to_string()) : std::vector{base.to_string()};
     double best_incoherent = 0;
     std::string best_config;
+    BvhConfig best_bvh = base;
     for (const std::string& text : configs) {
       TunedBvhAccel tuned(parse_bvh_config(text));
       BuildStats stats;
@@ -254,8 +309,8 @@ int run_bench_traversal(const BenchAccelArgs& args) {
         trace_seconds(native, set);  // warm caches
         trace_seconds(tuned, set);
         for (int r = 0; r < repeats; ++r) {
-          nat.push_back(trace_seconds(native, set));
-          tun.push_back(trace_seconds(tuned, set));
+          nat.push_back(trace_seconds(native, set, args.cpu_time));
+          tun.push_back(trace_seconds(tuned, set, args.cpu_time));
         }
         double n_mrays = set.rays.size() / median(nat) / 1e6;
         double t_mrays = set.rays.size() / median(tun) / 1e6;
@@ -265,6 +320,7 @@ int run_bench_traversal(const BenchAccelArgs& args) {
         if (set.name == "incoherent" && t_mrays / n_mrays > best_incoherent) {
           best_incoherent = t_mrays / n_mrays;
           best_config = tuned.describe();
+          best_bvh = tuned.config();
         }
       }
       std::printf("\n");
@@ -273,7 +329,10 @@ int run_bench_traversal(const BenchAccelArgs& args) {
     }
     scene_json["best_incoherent"] = {{"config", best_config}, {"ratio", best_incoherent}};
     std::printf("best on incoherent rays: %s (ratio %.3f)\n", best_config.c_str(), best_incoherent);
+    if (args.render) scene_json["render"] = render_run(args, scene, best_bvh);
     report["scenes"].push_back(scene_json);
+    // After every scene, so an interrupted run keeps what it measured.
+    if (!write_json(args.json, report)) return 1;
   }
   return write_json(args.json, report) ? 0 : 1;
 }
@@ -301,38 +360,38 @@ int run_bench_build(const BenchAccelArgs& args) {
   for (const std::string& spec : scenes) {
     Scene scene = load_scene(spec, LoadOptions{args.scenes_dir});
     GeometryView g = view_of(scene);
+    std::printf(
+        "\n%s: %zu triangles; native = Embree's own build at the same quality, "
+        "interleaved with the tuned one, medians of %d\n",
+        spec.c_str(), g.triangle_count, repeats);
+    std::printf("%-52s %9s %9s %6s %8s %8s %6s %8s %8s %10s\n", "config", "build ms", "native",
+                "ratio", "nodes", "leaves", "depth", "SAH", "MiB", "RSS KiB");
+    nlohmann::json scene_json = {
+        {"scene", spec}, {"triangles", g.triangle_count}, {"configs", nlohmann::json::array()}};
     EmbreeNativeAccel native;
-    std::vector<double> native_ms;
-    for (int r = 0; r < repeats; ++r) native_ms.push_back(native.build(g).build_ms);
-    std::printf("\n%s: %zu triangles, native build %.1f ms (median)\n", spec.c_str(),
-                g.triangle_count, median(native_ms));
-    std::printf("%-52s %9s %8s %8s %6s %8s %8s %10s\n", "config", "build ms", "nodes", "leaves",
-                "depth", "SAH", "MiB", "RSS KiB");
-    nlohmann::json scene_json = {{"scene", spec},
-                                 {"triangles", g.triangle_count},
-                                 {"native_build_ms", median(native_ms)},
-                                 {"configs", nlohmann::json::array()}};
     TunedBvhAccel tuned;  // one accelerator rebuilt with every configuration, as the tuner does
     for (const std::string& text : configs) {
       tuned.set_config(parse_bvh_config(text));
-      std::vector<double> ms;
-      BuildStats stats;
+      BuildComparison c;
       try {
-        for (int r = 0; r < repeats; ++r) {
-          stats = tuned.build(g);
-          ms.push_back(stats.build_ms);
-        }
+        c = compare_build_times(g, tuned, native, repeats);
       } catch (const BuildError& e) {
         std::printf("%-52s refused: %s\n", text.c_str(), e.what());
         continue;
       }
-      stats.build_ms = median(ms);
+      const BuildStats& stats = c.tuned;
       nlohmann::json cj = stats_json(stats);
       cj["config"] = tuned.describe();
+      cj["native"] = native.describe();
+      cj["native_build_ms"] = c.native_median_ms;
+      cj["ratio"] = c.ratio;
+      cj["tuned_ms_runs"] = c.tuned_ms;
+      cj["native_ms_runs"] = c.native_ms;
       cj["rss_kib"] = resident_kib();
-      std::printf("%-52s %9.1f %8zu %8zu %6d %8.2f %8.1f %10zu  %s\n", text.c_str(), stats.build_ms,
-                  stats.node_count, stats.leaf_count, stats.depth, stats.sah_cost,
-                  stats.memory_bytes / 1048576.0, resident_kib(), stats.notes.c_str());
+      std::printf("%-52s %9.1f %9.1f %6.2f %8zu %8zu %6d %8.2f %8.1f %10zu  %s\n", text.c_str(),
+                  stats.build_ms, c.native_median_ms, c.ratio, stats.node_count, stats.leaf_count,
+                  stats.depth, stats.sah_cost, stats.memory_bytes / 1048576.0, resident_kib(),
+                  stats.notes.c_str());
       std::fflush(stdout);
       scene_json["configs"].push_back(cj);
     }

@@ -25,6 +25,8 @@ struct EvalArgs {
   std::string size;
   uint32_t spp = 0;
   std::string objective = "both";
+  std::string scheduler = QualityOptions{}.wavefront ? "wavefront" : "tile";
+  bool tuned_only = false;
   bool quiet = false;
   std::string command_line;
 };
@@ -50,12 +52,14 @@ int run_eval(const EvalArgs& a) {
   else if (a.objective == "total")
     p.objectives = {Objective::kTotal};
   if (p.cameras < 2) throw std::invalid_argument("the study needs at least 2 cameras");
+  p.wavefront = a.scheduler == "wavefront";
+  p.native_in_space = !a.tuned_only;
 
   fmt::print(
-      "eval profile {}: {} scene(s), {} cameras x {} frames, {}x{} {} spp, {} repetitions "
-      "-> {}\n",
+      "eval profile {}: {} scene(s), {} cameras x {} frames, {}x{} {} spp, {} repetitions, {} "
+      "scheduler, {} -> {}\n",
       p.name, p.scenes.size(), p.cameras, p.iterations, p.width, p.height, p.spp, p.repetitions,
-      a.out);
+      a.scheduler, p.native_in_space ? "backend tuned|native + BVH" : "tuned BVH only", a.out);
   EvalPaths paths{a.out, a.db};
   EvalResults results = run_eval_study(p, paths, [&](const std::string& line) {
     if (!a.quiet) std::cout << line << std::endl;
@@ -87,6 +91,11 @@ CommandAction add_eval_command(CLI::App& app) {
   cmd->add_option("--objective", a->objective, "render, total or both")
       ->check(CLI::IsMember({"render", "total", "both"}))
       ->capture_default_str();
+  cmd->add_option("--scheduler", a->scheduler, "Scheduler frames are measured on")
+      ->check(CLI::IsMember({"tile", "wavefront"}))
+      ->capture_default_str();
+  cmd->add_flag("--tuned-only", a->tuned_only,
+                "Search the tuned BVH's parameters only, without native Embree as a choice");
   cmd->add_flag("--quiet,-q", a->quiet, "No per-camera lines");
   return [a, cmd] {
     a->command_line = "tuneray eval --profile " + a->profile + " --out " + a->out;

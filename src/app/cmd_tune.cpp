@@ -1,8 +1,12 @@
-// tuneray tune SCENE: online BVH tuning along a camera path, with a summary table.
+// tuneray tune SCENE: online BVH tuning along a camera path, with a summary table (speed over
+// the default configuration and over native Embree) and optionally a JSON report.
 #include <fmt/core.h>
 
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "app/cli_parse.h"
 #include "app/commands.h"
@@ -18,17 +22,64 @@ struct TuneArgs {
   TuneOptions options;
   std::string objective = "render";
   std::string size = "320x180";
+  std::string scheduler = QualityOptions{}.wavefront ? "wavefront" : "tile";
+  bool tuned_only = false;
+  std::string json;
   bool quiet = false;
 };
+
+void write_json(const TuneArgs& a, const TuneReport& report) {
+  nlohmann::json cams = nlohmann::json::array();
+  std::vector<double> speedups, vs_native;
+  for (const auto& c : report.cameras) {
+    cams.push_back({{"camera", c.camera},
+                    {"mode", c.mode},
+                    {"frames", c.frames},
+                    {"default_ms", c.default_ms},
+                    {"chosen_ms", c.chosen_ms},
+                    {"native_ms", c.native_ms},
+                    {"speedup", c.speedup()},
+                    {"vs_native", c.vs_native()},
+                    {"accumulated_ms", c.accumulated_ms},
+                    {"backend", c.backend},
+                    {"config", c.config},
+                    {"converged", c.converged}});
+    speedups.push_back(c.speedup());
+    vs_native.push_back(c.vs_native());
+  }
+  const TuneOptions& o = a.options;
+  nlohmann::json j = {
+      {"scene", o.scene},
+      {"objective", a.objective},
+      {"scheduler", a.scheduler},
+      {"native_in_space", o.native_in_space},
+      {"work_sizes", o.work_sizes},
+      {"tuning_key", tuning_key(o)},
+      {"size", a.size},
+      {"spp", o.spp},
+      {"iterations", o.iterations},
+      {"baseline_repeats", o.baseline_repeats},
+      {"cameras", cams},
+      {"failed_builds", report.failed_builds},
+      {"speedup", {{"median", median(speedups)}, {"geomean", geometric_mean(speedups)}}},
+      {"vs_native", {{"median", median(vs_native)}, {"geomean", geometric_mean(vs_native)}}}};
+  std::ofstream out(a.json);
+  if (!out) throw std::runtime_error("cannot write " + a.json);
+  out << j.dump(2) << "\n";
+}
 
 int run_tune(TuneArgs& a) {
   a.options.objective = parse_objective(a.objective);
   std::tie(a.options.width, a.options.height) = parse_size(a.size);
-  fmt::print("tuning {} (objective {}, {} cameras x {} frames, {}x{}, {} spp{}) into {}\n",
-             a.options.scene, a.objective, a.options.cameras, a.options.iterations, a.options.width,
-             a.options.height, a.options.spp,
-             a.options.work_sizes ? ", BVH + scheduler, tile_size, batch_size" : "",
-             a.options.db_path);
+  a.options.wavefront = a.scheduler == "wavefront";
+  a.options.native_in_space = !a.tuned_only;
+  fmt::print(
+      "tuning {} (objective {}, {} cameras x {} frames, {}x{}, {} spp, {} scheduler; {}{}) into "
+      "{}\n",
+      a.options.scene, a.objective, a.options.cameras, a.options.iterations, a.options.width,
+      a.options.height, a.options.spp, a.scheduler,
+      a.options.native_in_space ? "backend tuned|native + BVH" : "tuned BVH only",
+      a.options.work_sizes ? " + scheduler, tile_size, batch_size" : "", a.options.db_path);
   ProgressBar bar("tune", static_cast<uint64_t>(a.options.cameras) * a.options.iterations,
                   !a.quiet && stderr_is_terminal());
   TuneReport report = run_tune_session(
@@ -43,22 +94,31 @@ int run_tune(TuneArgs& a) {
         bar.advance();
       });
   bar.finish();
-  std::vector<double> speedups;
-  int searched = 0;
+  std::vector<double> speedups, vs_native;
+  int searched = 0, tuned = 0;
   for (const auto& c : report.cameras) {
     speedups.push_back(c.speedup());
+    vs_native.push_back(c.vs_native());
     searched += c.mode == "search";
+    tuned += c.backend == "tuned";
   }
-  fmt::print("\n{:>6} {:>8} {:>11} {:>11} {:>8} {:>14}  {}\n", "camera", "mode", "default ms",
-             "chosen ms", "speedup", "frames total", "configuration");
+  fmt::print("\n{:>6} {:>8} {:>11} {:>11} {:>11} {:>8} {:>9} {:>14}  {}\n", "camera", "mode",
+             "default ms", "native ms", "chosen ms", "speedup", "vs native", "frames total",
+             "configuration");
   for (const auto& c : report.cameras)
-    fmt::print("{:>6} {:>8} {:>11.2f} {:>11.2f} {:>8.3f} {:>14.1f}  {}\n", c.camera, c.mode,
-               c.default_ms, c.chosen_ms, c.speedup(), c.accumulated_ms, c.config);
+    fmt::print("{:>6} {:>8} {:>11.2f} {:>11.2f} {:>11.2f} {:>8.3f} {:>9.3f} {:>14.1f}  {}\n",
+               c.camera, c.mode, c.default_ms, c.native_ms, c.chosen_ms, c.speedup(), c.vs_native(),
+               c.accumulated_ms, c.config);
   fmt::print(
       "\nspeedup over the default configuration: median {:.3f}, geometric mean {:.3f}; "
       "{} of {} cameras searched, {} failed builds\n",
       median(speedups), geometric_mean(speedups), searched, report.cameras.size(),
       report.failed_builds);
+  fmt::print(
+      "speedup over native Embree (medium): median {:.3f}, geometric mean {:.3f}; "
+      "tuned BVH chosen at {} of {} cameras\n",
+      median(vs_native), geometric_mean(vs_native), tuned, report.cameras.size());
+  if (!a.json.empty()) write_json(a, report);
   return 0;
 }
 
@@ -95,6 +155,19 @@ CommandAction add_tune_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Seed of the tuner and the sampler")->capture_default_str();
   cmd->add_option("--scenes-dir", o.scenes_dir, "Folder to resolve scene files in");
+  cmd->add_option("--scheduler", a->scheduler,
+                  "Scheduler the frames are measured on (with --work-sizes: where the search "
+                  "starts); default: the renderer's")
+      ->check(CLI::IsMember({"tile", "wavefront"}))
+      ->capture_default_str();
+  cmd->add_flag("--tuned-only", a->tuned_only,
+                "Search the tuned BVH's parameters only, without native Embree as a choice "
+                "(stored under its own tuning key; native is still measured as a yardstick)");
+  cmd->add_option("--baseline-repeats", o.baseline_repeats,
+                  "Interleaved frames of default, native and chosen per camera (medians)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--json", a->json, "Write the per-camera results and the summary as JSON");
   cmd->add_flag("--work-sizes", o.work_sizes,
                 "Also tune the scheduler (tile or wavefront) and its tile or batch size "
                 "(stored under its own tuning key)");

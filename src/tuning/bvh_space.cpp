@@ -1,9 +1,19 @@
 #include "tuning/bvh_space.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace tuneray {
 
-tuner::Space make_bvh_space() {
-  tuner::Space space;
+namespace {
+
+using Predicate = tuner::Space::Predicate;
+
+// The 10 BVH parameters. `tuned` (empty in the BVH-only space) tells when the tuned backend is
+// in use; every BVH parameter is inactive otherwise. The BVH-only space keeps its exact
+// description (conditions are part of it), so databases tuned before the backend choice existed
+// stay valid.
+void add_bvh_params(tuner::Space& space, const Predicate& tuned) {
   space.add_enum("quality", {"low", "medium", "high"}, "medium")
       .add_int_set("branching", {2, 4, 8}, 2)
       .add_int("max_depth", 8, 64, 32)
@@ -14,21 +24,53 @@ tuner::Space make_bvh_space() {
       .add_bool("static", false)
       .add_bool("compact", false)
       .add_bool("robust", false);
-  auto sah_only = tuner::Space::when_enum_not("quality", {"low"});
+  if (tuned)
+    for (const char* name :
+         {"quality", "branching", "max_depth", "min_leaf", "static", "compact", "robust"})
+      space.add_condition(name, tuned);
+  // A Space holds one condition per parameter: the SAH ones need both.
+  Predicate sah = tuner::Space::when_enum_not("quality", {"low"});
+  Predicate sah_only =
+      !tuned ? sah : Predicate([tuned, sah](const tuner::Config& c) { return tuned(c) && sah(c); });
   space.add_condition("sah_block_size", sah_only)
       .add_condition("max_leaf", sah_only)
       .add_condition("cost_ratio", sah_only);
   space.add_constraint("min_leaf <= max_leaf", [](const tuner::Config& c) {
     return c.get_int("min_leaf") <= c.get_int("max_leaf");
   });
+}
+
+bool has_param(const tuner::Config& c, const std::string& name) {
+  for (const tuner::ParamSpec& p : c.params())
+    if (p.name == name) return true;
+  return false;
+}
+
+BvhQuality quality_of(const std::string& label) {
+  return label == "low" ? BvhQuality::kLow
+                        : (label == "high" ? BvhQuality::kHigh : BvhQuality::kMedium);
+}
+
+}  // namespace
+
+tuner::Space make_bvh_space() {
+  tuner::Space space;
+  add_bvh_params(space, {});
+  return space;
+}
+
+tuner::Space make_backend_space() {
+  tuner::Space space;
+  space.add_enum("backend", {"tuned", "native"}, "tuned")
+      .add_enum("native_quality", {"low", "medium", "high"}, "medium");
+  space.add_condition("native_quality", tuner::Space::when_enum_not("backend", {"tuned"}));
+  add_bvh_params(space, tuner::Space::when_enum_not("backend", {"native"}));
   return space;
 }
 
 BvhConfig to_bvh_config(const tuner::Config& c) {
   BvhConfig b;
-  const std::string& q = c.get_enum("quality");
-  b.quality =
-      q == "low" ? BvhQuality::kLow : (q == "high" ? BvhQuality::kHigh : BvhQuality::kMedium);
+  b.quality = quality_of(c.get_enum("quality"));
   b.branching = static_cast<int>(c.get_int("branching"));
   b.max_depth = static_cast<int>(c.get_int("max_depth"));
   b.sah_block_size = static_cast<int>(c.get_int("sah_block_size"));
@@ -53,7 +95,40 @@ tuner::Config to_tuner_config(const tuner::Space& space, const BvhConfig& b) {
       .set_bool("static", b.is_static)
       .set_bool("compact", b.compact)
       .set_bool("robust", b.robust);
+  if (has_param(c, "backend")) c.set_enum("backend", "tuned");
   return space.canonical(c);
+}
+
+AccelChoice to_accel_choice(const tuner::Config& c) {
+  if (has_param(c, "backend") && c.get_enum("backend") == "native")
+    return AccelChoice::native(quality_of(c.get_enum("native_quality")));
+  return AccelChoice::tuned(to_bvh_config(c));
+}
+
+tuner::Config to_tuner_config(const tuner::Space& space, const AccelChoice& choice) {
+  tuner::Config c = to_tuner_config(space, choice.bvh);
+  if (!choice.is_native()) return c;
+  if (!has_param(c, "backend"))
+    throw std::invalid_argument("the native backend is not part of this search space");
+  c.set_enum("backend", "native").set_enum("native_quality", to_string(choice.native_quality));
+  return space.canonical(c);
+}
+
+BvhConfig embree_bvh8_config(BvhQuality quality) {
+  BvhConfig b;
+  b.quality = quality;
+  b.branching = 8;
+  b.sah_block_size = 4;
+  b.min_leaf = 4;
+  b.max_leaf = 28;  // 7 blocks of 4: Embree's largest leaf in a BVH8 reference
+  return b;
+}
+
+std::vector<tuner::Config> tuning_seeds(const tuner::Space& space, bool build_time_counts) {
+  std::vector<tuner::Config> seeds = {to_tuner_config(space, embree_bvh8_config())};
+  if (!build_time_counts)
+    seeds.push_back(to_tuner_config(space, embree_bvh8_config(BvhQuality::kHigh)));
+  return seeds;
 }
 
 }  // namespace tuneray

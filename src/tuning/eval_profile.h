@@ -23,6 +23,8 @@ struct EvalProfile {
   int measure_repeats = 3;  // live re-measurements (median) of a configuration
   std::vector<Objective> objectives = {Objective::kRender, Objective::kTotal};
   uint64_t seed = 1;
+  bool wavefront = QualityOptions{}.wavefront;  // the scheduler frames are measured on
+  bool native_in_space = true;  // native Embree is a choice of the search (make_backend_space)
 };
 
 // "quick": two small built-in scenes, CI-sized (minutes). "standard": every shared scene,

@@ -42,14 +42,16 @@ std::vector<double> finite(const std::vector<double>& v) {
 void write_csvs(const EvalResults& r, const fs::path& dir) {
   auto cams = open_out(dir / "cameras.csv");
   cams << "scene,objective,camera,default_ms,converged_ms,best_ms,search_speedup,converged,"
-          "search_frames,search_total_ms,converged_config,best_config\n";
+          "search_frames,search_total_ms,converged_config,best_config,native_ms,"
+          "native_speedup\n";
   for (const CameraRecord& c : r.cameras) {
     double total = 0;
     for (double ms : c.search_ms) total += ms;
-    cams << fmt::format("{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\"\n", c.scene, c.objective,
+    cams << fmt::format("{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\",{},{}\n", c.scene, c.objective,
                         c.camera, num(c.default_ms), num(c.converged_ms), num(c.best_ms),
                         num(c.search_speedup()), c.converged ? 1 : 0, c.search_ms.size(),
-                        num(total), c.converged_config, c.best_config);
+                        num(total), c.converged_config, c.best_config, num(c.native_ms),
+                        num(c.native_speedup()));
   }
   auto frames = open_out(dir / "search_frames.csv");
   frames << "scene,objective,camera,frame,cost_ms\n";
@@ -59,12 +61,12 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
                             num(c.search_ms[k]));
   auto preds = open_out(dir / "predictions.csv");
   preds << "scene,objective,repetition,camera,predictor,predicted_ms,search_total_ms,speedup,"
-           "overhead_reduction,roofline,break_even,config\n";
+           "overhead_reduction,roofline,break_even,config,native_speedup\n";
   for (const PredictionRecord& p : r.predictions)
-    preds << fmt::format("{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", p.scene, p.objective,
+    preds << fmt::format("{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", p.scene, p.objective,
                          p.repetition, p.camera, p.predictor, num(p.predicted_ms),
                          num(p.search_total_ms), num(p.speedup), num(p.overhead_reduction),
-                         num(p.roofline), num(p.break_even), p.config);
+                         num(p.roofline), num(p.break_even), p.config, num(p.native_speedup));
 }
 
 // gnuplot script for one figure, written as both PNG and SVG.
@@ -140,14 +142,18 @@ void write_plots(const EvalResults& r, const std::vector<EvalSummary>& summaries
   for (const std::string& obj : objectives) {
     Series search, predicted;
     for (const CameraRecord& c : r.cameras)
-      if (c.objective == obj) search[{scene_index(c.scene), 1}].push_back(c.search_speedup());
+      if (c.objective == obj) {
+        search[{scene_index(c.scene), 1}].push_back(c.search_speedup());
+        search[{scene_index(c.scene), 2}].push_back(c.native_speedup());
+      }
     for (const PredictionRecord& pr : r.predictions)
       if (pr.objective == obj)
         predicted[{scene_index(pr.scene), pr.predictor == "nn" ? 1 : 2}].push_back(pr.speedup);
     write_plot(dir, "search_speedup_" + obj,
-               "set title 'Converged search vs default configuration, per camera (" + obj +
-                   ")'\nset ylabel 'speedup'\n" + box_style + xtics +
-                   box_plot("search_speedup_" + obj + ".dat", search));
+               "set title 'Converged search per camera (" + obj +
+                   "): left over the default configuration, right over native Embree'\n"
+                   "set ylabel 'speedup'\n" +
+                   box_style + xtics + box_plot("search_speedup_" + obj + ".dat", search));
     write_plot(dir, "predictor_speedup_" + obj,
                "set title 'Prediction vs search, accumulated frame time (" + obj +
                    "): left NN, right RBF'\nset ylabel 'speedup over search'\n" + box_style +
@@ -211,16 +217,21 @@ std::vector<EvalSummary> summarise(const EvalResults& r) {
     EvalSummary s;
     s.scene = scene;
     s.objective = obj;
-    std::vector<double> search;
+    std::vector<double> search, search_native;
     for (const CameraRecord& c : r.cameras)
-      if (c.scene == scene && c.objective == obj) search.push_back(c.search_speedup());
+      if (c.scene == scene && c.objective == obj) {
+        search.push_back(c.search_speedup());
+        search_native.push_back(c.native_speedup());
+      }
     s.cameras = static_cast<int>(search.size());
     s.search_speedup_median = median(search);
-    std::map<std::string, std::vector<double>> speed, overhead, roof, breakeven;
+    s.search_native_speedup_median = median(search_native);
+    std::map<std::string, std::vector<double>> speed, overhead, roof, breakeven, native;
     std::map<std::string, int> never;
     for (const PredictionRecord& p : r.predictions) {
       if (p.scene != scene || p.objective != obj) continue;
       speed[p.predictor].push_back(p.speedup);
+      native[p.predictor].push_back(p.native_speedup);
       overhead[p.predictor].push_back(p.overhead_reduction);
       roof[p.predictor].push_back(p.roofline);
       if (std::isfinite(p.break_even))
@@ -243,6 +254,8 @@ std::vector<EvalSummary> summarise(const EvalResults& r) {
     s.rbf_break_even_median = median(breakeven["rbf"]);
     s.nn_never = never["nn"];
     s.rbf_never = never["rbf"];
+    s.nn_native_speedup_median = median(native["nn"]);
+    s.rbf_native_speedup_median = median(native["rbf"]);
     out.push_back(s);
   }
   return out;
@@ -256,16 +269,20 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
   std::vector<EvalSummary> summaries = summarise(r);
   {
     auto f = open_out(dir / "summary.csv");
-    f << "scene,objective,cameras,search_speedup_median,nn_speedup_geomean,rbf_speedup_geomean,"
-         "nn_overhead_reduction_median,rbf_overhead_reduction_median,nn_roofline_mean,"
-         "rbf_roofline_mean,nn_break_even_median,rbf_break_even_median,nn_never,rbf_never\n";
+    f << "scene,objective,cameras,search_speedup_median,search_native_speedup_median,"
+         "nn_speedup_geomean,rbf_speedup_geomean,nn_overhead_reduction_median,"
+         "rbf_overhead_reduction_median,nn_roofline_mean,rbf_roofline_mean,nn_break_even_median,"
+         "rbf_break_even_median,nn_never,rbf_never,nn_native_speedup_median,"
+         "rbf_native_speedup_median\n";
     for (const EvalSummary& s : summaries)
-      f << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.scene, s.objective,
-                       s.cameras, num(s.search_speedup_median), num(s.nn_speedup_geomean),
-                       num(s.rbf_speedup_geomean), num(s.nn_overhead_reduction_median),
-                       num(s.rbf_overhead_reduction_median), num(s.nn_roofline_mean),
-                       num(s.rbf_roofline_mean), num(s.nn_break_even_median),
-                       num(s.rbf_break_even_median), s.nn_never, s.rbf_never);
+      f << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.scene, s.objective,
+                       s.cameras, num(s.search_speedup_median), num(s.search_native_speedup_median),
+                       num(s.nn_speedup_geomean), num(s.rbf_speedup_geomean),
+                       num(s.nn_overhead_reduction_median), num(s.rbf_overhead_reduction_median),
+                       num(s.nn_roofline_mean), num(s.rbf_roofline_mean),
+                       num(s.nn_break_even_median), num(s.rbf_break_even_median), s.nn_never,
+                       s.rbf_never, num(s.nn_native_speedup_median),
+                       num(s.rbf_native_speedup_median));
   }
   write_plots(r, summaries, dir / "plots");
   bool plotted = run_gnuplot(dir / "plots");
@@ -278,10 +295,14 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
      << fmt::format(
             "Protocol: {} cameras per scene along its camera path, {} search frames per "
             "camera (each builds the BVH as the objective requires and renders {} spp at "
-            "{}x{}, {} bounces); predictors trained on {:.0f} % of the cameras and "
-            "validated on the rest, {} random splits. Every configuration compared is "
-            "re-measured live (median of {}).\n\n",
+            "{}x{}, {} bounces, {} scheduler); the search space is {}; predictors trained "
+            "on {:.0f} % of the cameras and validated on the rest, {} random splits. Every "
+            "configuration compared, native Embree included, is re-measured live (median of "
+            "{}).\n\n",
             p.cameras, p.iterations, p.spp, p.width, p.height, p.max_bounces,
+            p.wavefront ? "wavefront" : "tile",
+            p.native_in_space ? "the backend (tuned BVH or native Embree) and the BVH parameters"
+                              : "the tuned BVH's parameters only",
             100 * p.train_fraction, p.repetitions, p.measure_repeats);
   for (const std::string obj : {"render", "total"}) {
     bool any = false;
@@ -291,19 +312,24 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
        << (obj == std::string("render") ? "render time, progressive rendering"
                                         : "build + render time, real-time rendering")
        << ")\n\n"
-       << "| scene | cameras | search speedup (median) | NN speedup over search (geo-mean) | "
-          "RBF speedup (geo-mean) | NN overhead reduction (median) | RBF overhead reduction | "
-          "NN roofline (mean) | RBF roofline | NN break-even (median frame, never) | RBF "
-          "break-even |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+       << "| scene | cameras | search speedup (median) | search over native (median) | NN "
+          "speedup over search (geo-mean) | RBF speedup (geo-mean) | NN overhead reduction "
+          "(median) | RBF overhead reduction | NN roofline (mean) | RBF roofline | NN break-even "
+          "(median frame, never) | RBF break-even | NN over native (median) | RBF over native "
+          "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     std::vector<double> nn_speed, rbf_speed, search_speed, nn_overhead, nn_roof, rbf_roof;
+    std::vector<double> search_native;
     for (const EvalSummary& s : summaries) {
       if (s.objective != obj) continue;
-      md << fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) |\n",
-                        s.scene, s.cameras, num(s.search_speedup_median), num(s.nn_speedup_geomean),
-                        num(s.rbf_speedup_geomean), num(s.nn_overhead_reduction_median),
-                        num(s.rbf_overhead_reduction_median), num(s.nn_roofline_mean),
-                        num(s.rbf_roofline_mean), num(s.nn_break_even_median), s.nn_never,
-                        num(s.rbf_break_even_median), s.rbf_never);
+      md << fmt::format(
+          "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) | {} | {} |\n",
+          s.scene, s.cameras, num(s.search_speedup_median), num(s.search_native_speedup_median),
+          num(s.nn_speedup_geomean), num(s.rbf_speedup_geomean),
+          num(s.nn_overhead_reduction_median), num(s.rbf_overhead_reduction_median),
+          num(s.nn_roofline_mean), num(s.rbf_roofline_mean), num(s.nn_break_even_median),
+          s.nn_never, num(s.rbf_break_even_median), s.rbf_never, num(s.nn_native_speedup_median),
+          num(s.rbf_native_speedup_median));
+      search_native.push_back(s.search_native_speedup_median);
       if (s.nn_speedup_geomean > 0) nn_speed.push_back(s.nn_speedup_geomean);
       if (s.rbf_speedup_geomean > 0) rbf_speed.push_back(s.rbf_speedup_geomean);
       search_speed.push_back(s.search_speedup_median);
@@ -313,6 +339,9 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
     }
     auto max_of = [](const std::vector<double>& v) {
       return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+    };
+    auto min_of = [](const std::vector<double>& v) {
+      return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
     };
     auto mean_of = [](const std::vector<double>& v) {
       double sum = 0;
@@ -324,6 +353,10 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
               "| search speedup over default, median per scene (best scene) | {} | 1.11 "
               "(sponza); 1.02–1.04 elsewhere |\n",
               num(max_of(search_speed)))
+       << fmt::format(
+              "| search speedup over native Embree, median per scene (worst scene – best "
+              "scene) | {} – {} | — (target: >= 1.10 median, never below 1.0) |\n",
+              num(min_of(search_native)), num(max_of(search_native)))
        << fmt::format("| NN speedup over search, geo-mean over scenes | {} | {} |\n",
                       num(geometric_mean(nn_speed)), obj == std::string("render") ? "1.05" : "1.12")
        << fmt::format("| RBF speedup over search, geo-mean over scenes | {} | {} |\n",
@@ -342,7 +375,9 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
   }
   if (!plotted) md << "Plots: gnuplot was not available or failed; the scripts are in plots/.\n\n";
   md << "Definitions: *search speedup* = default / converged configuration, both re-measured "
-        "live; *speedup over search* = accumulated time of the search's frames / (frames x the "
+        "live; *over native* = native Embree (medium quality, as `render --accel native`) / the "
+        "converged or predicted configuration, re-measured live the same way; *speedup over "
+        "search* = accumulated time of the search's frames / (frames x the "
         "prediction's cost); *overhead reduction* = 1 - (prediction's accumulated time - frames "
         "x best) / (search's accumulated time - frames x best); *roofline* = best / predicted "
         "cost; *break-even* = first frame at which the search's accumulated time is no longer "

@@ -13,8 +13,9 @@ namespace tuneray {
 struct EvalSummary {
   std::string scene, objective;
   int cameras = 0;
-  double search_speedup_median = 0;  // default / converged, over cameras
-  double nn_speedup_geomean = 0;     // prediction over search, accumulated frames
+  double search_speedup_median = 0;         // default / converged, over cameras
+  double search_native_speedup_median = 0;  // native Embree / converged, over cameras
+  double nn_speedup_geomean = 0;            // prediction over search, accumulated frames
   double rbf_speedup_geomean = 0;
   double nn_overhead_reduction_median = 0;
   double rbf_overhead_reduction_median = 0;
@@ -22,7 +23,9 @@ struct EvalSummary {
   double rbf_roofline_mean = 0;
   double nn_break_even_median = 0;  // over the finite ones
   double rbf_break_even_median = 0;
-  int nn_never = 0, rbf_never = 0;  // predictions the search never catches up with
+  int nn_never = 0, rbf_never = 0;      // predictions the search never catches up with
+  double nn_native_speedup_median = 0;  // native Embree / predicted, over predictions
+  double rbf_native_speedup_median = 0;
 };
 
 std::vector<EvalSummary> summarise(const EvalResults& results);

@@ -53,8 +53,8 @@ class LiveCosts {
     }
   }
 
-  double get(FrameBench& bench, const CameraDesc& camera, int camera_index, const BvhConfig& config,
-             int repeats) {
+  double get(FrameBench& bench, const CameraDesc& camera, int camera_index,
+             const AccelChoice& config, int repeats) {
     std::string key = fmt::format("{}\t{}\t{}", prefix_, camera_index, config.to_string());
     if (auto it = cache_.find(key); it != cache_.end()) return it->second;
     std::vector<double> ms;
@@ -98,7 +98,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
       paths.db_path.empty() ? (fs::path(paths.out_dir) / "eval.db").string() : paths.db_path;
   EvalResults results;
   results.profile = p;
-  const tuner::Space space = make_bvh_space();
+  const tuner::Space space = p.native_in_space ? make_backend_space() : make_bvh_space();
   const tuner::IndicatorSchema schema = make_indicator_schema();
 
   for (const std::string& spec : p.scenes) {
@@ -116,16 +116,21 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
 
     for (Objective objective : p.objectives) {
       const std::string obj = to_string(objective);
+      // The scheduler is part of the key: costs on tiles and on waves do not compare.
       const std::string run_key =
-          fmt::format("{}/{}/{}x{}/{}spp/{}b", name, obj, p.width, p.height, p.spp, p.max_bounces);
+          fmt::format("{}/{}/{}x{}/{}spp/{}b/{}", name, obj, p.width, p.height, p.spp,
+                      p.max_bounces, p.wavefront ? "wavefront" : "tile");
       RenderSettings settings;
       settings.width = p.width;
       settings.height = p.height;
       settings.max_bounces = p.max_bounces;
       settings.seed = p.seed;
-      settings.quality.wavefront = false;  // the study's protocol: see tune_session.cpp
+      settings.quality.wavefront = p.wavefront;
       FrameBench bench(scene, settings, p.spp, objective);
-      bench.run(BvhConfig{}, data.cameras[0]);  // warm-up, not counted
+      const AccelChoice default_choice = AccelChoice::tuned(BvhConfig{});
+      const AccelChoice native_choice = AccelChoice::native();
+      bench.run(native_choice, data.cameras[0]);  // warm-up, not counted
+      bench.run(default_choice, data.cameras[0]);
       LiveCosts live((fs::path(paths.out_dir) / "live_costs.tsv").string(), run_key);
 
       // 1. A full search at every camera, each from the default configuration.
@@ -138,13 +143,15 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         options.seed = p.seed + ci;
         options.search.max_iterations = p.iterations;
         options.db_path = db_path;
-        options.tuning_key = fmt::format("eval/{}/cam{}", run_key, ci);
+        // The space is part of the key: the database refuses one key with two spaces.
+        options.tuning_key =
+            fmt::format("{}/{}/cam{}", p.native_in_space ? "eval+backend" : "eval", run_key, ci);
         tuner::HybridTuner tuner(space, schema, options);
         int64_t signature = tuner.signature_id();
         size_t done = tuner.database()->samples(signature).size();
         for (size_t k = done; k < static_cast<size_t>(p.iterations); ++k) {
           tuner::Config c = tuner.suggest(data.states[ci]);
-          FrameCost cost = bench.run(to_bvh_config(c), data.cameras[ci]);
+          FrameCost cost = bench.run(to_accel_choice(c), data.cameras[ci]);
           tuner::Extras extras = {{"build_ms", cost.build_ms}, {"render_ms", cost.render_ms}};
           if (cost.ok)
             tuner.report(c, cost.cost_ms(objective) / 1000.0, extras);
@@ -155,7 +162,9 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         r.scene = name;
         r.objective = obj;
         r.camera = static_cast<int>(ci);
-        r.default_ms = live.get(bench, data.cameras[ci], r.camera, BvhConfig{}, p.measure_repeats);
+        r.default_ms =
+            live.get(bench, data.cameras[ci], r.camera, default_choice, p.measure_repeats);
+        r.native_ms = live.get(bench, data.cameras[ci], r.camera, native_choice, p.measure_repeats);
         for (const tuner::StoredSample& s : tuner.database()->samples(signature)) {
           // A refused build is counted as a frame rendered with the default tree.
           double ms = std::isfinite(s.cost) ? s.cost * 1000.0 : r.default_ms;
@@ -166,14 +175,15 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         tuner::Config incumbent = tuner.best(data.states[ci]);
         data.incumbents[ci] = incumbent;
         if (auto summary = tuner.summary(data.states[ci])) r.converged = summary->converged;
-        r.converged_config = to_bvh_config(incumbent).to_string();
-        r.converged_ms = live.get(bench, data.cameras[ci], r.camera, to_bvh_config(incumbent),
+        r.converged_config = to_accel_choice(incumbent).to_string();
+        r.converged_ms = live.get(bench, data.cameras[ci], r.camera, to_accel_choice(incumbent),
                                   p.measure_repeats);
         if (log)
           log(fmt::format(
-              "{:<14} {:<6} camera {:>3}: search {:3} frames, default {:8.2f} ms, "
-              "converged {:8.2f} ms ({:.3f}x)",
-              name, obj, ci, r.search_ms.size(), r.default_ms, r.converged_ms, r.search_speedup()));
+              "{:<14} {:<6} camera {:>3}: search {:3} frames, default {:8.2f} ms, native {:8.2f} "
+              "ms, converged {:8.2f} ms ({:.3f}x default, {:.3f}x native)",
+              name, obj, ci, r.search_ms.size(), r.default_ms, r.native_ms, r.converged_ms,
+              r.search_speedup(), r.native_speedup()));
       }
 
       // 2. Predictors trained on a random split, judged on the held-out cameras.
@@ -222,9 +232,10 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
             pr.repetition = rep;
             pr.camera = static_cast<int>(ci);
             pr.predictor = predictor;
-            BvhConfig bvh = to_bvh_config(config);
-            pr.config = bvh.to_string();
-            pr.predicted_ms = live.get(bench, data.cameras[ci], pr.camera, bvh, p.measure_repeats);
+            AccelChoice choice = to_accel_choice(config);
+            pr.config = choice.to_string();
+            pr.predicted_ms =
+                live.get(bench, data.cameras[ci], pr.camera, choice, p.measure_repeats);
             predictions.push_back(pr);
           }
         }
@@ -243,6 +254,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         pr.overhead_reduction = overhead_reduction(r.search_ms, r.converged_ms, pr.predicted_ms,
                                                    r.best_ms, p.iterations);
         pr.roofline = roofline_fraction(pr.predicted_ms, r.best_ms);
+        pr.native_speedup = pr.predicted_ms > 0 ? r.native_ms / pr.predicted_ms : 0.0;
         pr.break_even = break_even_frame(r.search_ms, r.converged_ms, pr.predicted_ms);
       }
       results.cameras.insert(results.cameras.end(), records.begin(), records.end());

@@ -21,9 +21,11 @@ struct CameraRecord {
   bool converged = false;
   double default_ms = 0;  // live medians, measured the same way for every configuration
   double converged_ms = 0;
-  double best_ms = 0;  // best of every configuration measured live at this camera
+  double native_ms = 0;  // native Embree, medium quality (`render --accel native`)
+  double best_ms = 0;    // best of every configuration measured live at this camera
   std::string best_config;
   double search_speedup() const { return converged_ms > 0 ? default_ms / converged_ms : 0.0; }
+  double native_speedup() const { return converged_ms > 0 ? native_ms / converged_ms : 0.0; }
 };
 
 // One predictor's choice for one validation camera in one repetition.
@@ -37,6 +39,7 @@ struct PredictionRecord {
   double predicted_ms = 0;
   double search_total_ms = 0;  // accumulated time of the search's frames
   double speedup = 0;          // over the search, accumulated over the search's frame count
+  double native_speedup = 0;   // native Embree's live cost / predicted_ms
   double overhead_reduction = 0;
   double roofline = 0;
   double break_even = 0;  // frames; infinity = never

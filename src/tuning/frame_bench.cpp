@@ -27,37 +27,63 @@ FrameBench::FrameBench(const Scene& scene, const RenderSettings& settings, uint3
       spp_(spp),
       objective_(objective),
       sampler_(settings.seed),
-      renderer_(scene, accel_, scene.cameras.at(0), settings, sampler_),
+      tuned_renderer_(scene, tuned_, scene.cameras.at(0), settings, sampler_),
+      native_renderer_(scene, native_, scene.cameras.at(0), settings, sampler_),
       film_(settings.width, settings.height) {}
 
-FrameCost FrameBench::run(const BvhConfig& config, const CameraDesc& camera) {
-  return run(config, WorkSizes::of(settings_), camera);
+const Accel& FrameBench::accel() const {
+  return current_ == Backend::kNative ? static_cast<const Accel&>(native_) : tuned_;
 }
 
-FrameCost FrameBench::run(const BvhConfig& config, const WorkSizes& work,
+const BuildStats& FrameBench::build_stats() const {
+  return current_ == Backend::kNative ? native_stats_ : tuned_stats_;
+}
+
+bool FrameBench::prepare(const AccelChoice& choice, FrameCost& cost) {
+  current_ = choice.backend;
+  const GeometryView geometry{scene_.positions.data(), scene_.positions.size(),
+                              scene_.triangles.data(), scene_.triangles.size()};
+  const bool every_frame = objective_ == Objective::kTotal;
+  try {
+    if (choice.is_native()) {
+      if (native_built_ == choice.native_quality && !every_frame) return true;
+      native_built_.reset();
+      native_.set_options(choice.native_options());
+      native_stats_ = native_.build(geometry);
+      native_built_ = choice.native_quality;
+      cost.build_ms = native_stats_.build_ms;
+    } else {
+      if (tuned_built_ == choice.bvh && !every_frame) return true;
+      tuned_built_.reset();
+      tuned_.set_config(choice.bvh);
+      tuned_stats_ = tuned_.build(geometry);
+      tuned_built_ = choice.bvh;
+      cost.build_ms = tuned_stats_.build_ms;
+    }
+  } catch (const std::exception& e) {  // BuildError, or a configuration the backend rejects
+    cost.ok = false;
+    cost.error = e.what();
+    return false;
+  }
+  cost.rebuilt = true;
+  return true;
+}
+
+FrameCost FrameBench::run(const AccelChoice& choice, const CameraDesc& camera) {
+  return run(choice, WorkSizes::of(settings_), camera);
+}
+
+FrameCost FrameBench::run(const AccelChoice& choice, const WorkSizes& work,
                           const CameraDesc& camera) {
   FrameCost cost;
-  if (!built_ || !(*built_ == config) || objective_ == Objective::kTotal) {
-    built_.reset();
-    try {
-      accel_.set_config(config);
-      build_stats_ = accel_.build({scene_.positions.data(), scene_.positions.size(),
-                                   scene_.triangles.data(), scene_.triangles.size()});
-    } catch (const std::exception& e) {  // BuildError, or a configuration the backend rejects
-      cost.ok = false;
-      cost.error = e.what();
-      return cost;
-    }
-    built_ = config;
-    cost.rebuilt = true;
-    cost.build_ms = build_stats_.build_ms;
-  }
+  if (!prepare(choice, cost)) return cost;
+  TileRenderer& renderer = choice.is_native() ? native_renderer_ : tuned_renderer_;
   // A fresh film each frame: the image is not the point, the time is. Sample indices advance
   // so frames are not identical.
   film_.clear();
-  renderer_.set_camera(camera);
-  renderer_.set_work_sizes(work.wavefront, work.tile_size, work.batch_size);
-  PassStats pass = renderer_.render_pass(film_, frame_ * spp_, spp_);
+  renderer.set_camera(camera);
+  renderer.set_work_sizes(work.wavefront, work.tile_size, work.batch_size);
+  PassStats pass = renderer.render_pass(film_, frame_ * spp_, spp_);
   ++frame_;
   cost.render_ms = pass.render_ms;
   return cost;

@@ -1,19 +1,23 @@
-// Measures what the tuner optimises: one frame rendered with a given BVH configuration (and
-// optionally scheduler and work sizes) from a given camera. The BVH is rebuilt only when its
-// configuration changes (progressive rendering) or for every frame (real-time rendering,
-// objective `total`); a change of work sizes alone never rebuilds it.
+// Measures what the tuner optimises: one frame rendered with a given accelerator (our tuned BVH
+// with a configuration, or native Embree with a build quality; optionally with other scheduler
+// and work sizes) from a given camera. A backend's tree is rebuilt only when its configuration
+// changes (progressive rendering) or for every frame (real-time rendering, objective `total`);
+// a change of work sizes alone never rebuilds it. Both backends keep their last tree, so frames
+// that alternate between native and tuned (the baselines of `tune`) do not rebuild either.
 #pragma once
 
 #include <optional>
 #include <string>
 
 #include "accel/bvh_config.h"
+#include "accel/embree_native.h"
 #include "accel/tuned_bvh.h"
 #include "render/film.h"
 #include "render/render_settings.h"
 #include "render/sampler.h"
 #include "render/tile_renderer.h"
 #include "scene/scene.h"
+#include "tuning/accel_choice.h"
 #include "tuning/work_sizes.h"
 
 namespace tuneray {
@@ -40,13 +44,23 @@ class FrameBench {
  public:
   FrameBench(const Scene& scene, const RenderSettings& settings, uint32_t spp, Objective objective);
 
-  // Renders one frame of `spp` samples per pixel with `config` from `camera`, with the work
-  // sizes of the settings given to the constructor.
-  FrameCost run(const BvhConfig& config, const CameraDesc& camera);
-  // The same with other work sizes. The integrator and its lights are kept.
-  FrameCost run(const BvhConfig& config, const WorkSizes& work, const CameraDesc& camera);
-  // The last successful build's statistics.
-  const BuildStats& build_stats() const { return build_stats_; }
+  // Renders one frame of `spp` samples per pixel with `choice` from `camera`, with the work
+  // sizes of the settings given to the constructor, or with `work`. The integrator and its
+  // lights are kept.
+  FrameCost run(const AccelChoice& choice, const CameraDesc& camera);
+  FrameCost run(const AccelChoice& choice, const WorkSizes& work, const CameraDesc& camera);
+  // The tuned BVH with `config`.
+  FrameCost run(const BvhConfig& config, const CameraDesc& camera) {
+    return run(AccelChoice::tuned(config), camera);
+  }
+  FrameCost run(const BvhConfig& config, const WorkSizes& work, const CameraDesc& camera) {
+    return run(AccelChoice::tuned(config), work, camera);
+  }
+
+  // The accelerator of the last frame (or of the last build attempt) and its last successful
+  // build's statistics.
+  const Accel& accel() const;
+  const BuildStats& build_stats() const;
   Objective objective() const { return objective_; }
   const RenderSettings& settings() const { return settings_; }
   uint32_t spp() const { return spp_; }
@@ -54,15 +68,23 @@ class FrameBench {
   const Film& film() const { return film_; }
 
  private:
+  // Builds the tree `choice` needs unless it is already there; false (with the error in `cost`)
+  // when the backend refused.
+  bool prepare(const AccelChoice& choice, FrameCost& cost);
+
   const Scene& scene_;
   RenderSettings settings_;
   uint32_t spp_;
   Objective objective_;
-  TunedBvhAccel accel_;
-  std::optional<BvhConfig> built_;
-  BuildStats build_stats_;
+  TunedBvhAccel tuned_;
+  EmbreeNativeAccel native_;
+  std::optional<BvhConfig> tuned_built_;
+  std::optional<BvhQuality> native_built_;
+  BuildStats tuned_stats_, native_stats_;
+  Backend current_ = Backend::kTuned;
   PcgSampler sampler_;
-  TileRenderer renderer_;
+  // One renderer per backend: a renderer holds its accelerator by reference.
+  TileRenderer tuned_renderer_, native_renderer_;
   Film film_;
   uint32_t frame_ = 0;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "tuning/bvh_space.h"
@@ -15,11 +16,11 @@ int64_t member_or(int64_t value, const std::vector<int64_t>& set, int64_t fallba
 }
 }  // namespace
 
-tuner::Space make_render_space(const RenderSettings& defaults) {
+tuner::Space make_render_space(const RenderSettings& defaults, tuner::Space base) {
   const std::vector<int64_t> tiles = {8, 16, 32, 64};
   const std::vector<int64_t> batches = {256, 1024, 4096, 16384, 65536};
   const RenderSettings renderer;
-  tuner::Space space = make_bvh_space();
+  tuner::Space space = std::move(base);
   space
       .add_enum("scheduler", {"tile", "wavefront"},
                 defaults.quality.wavefront ? "wavefront" : "tile")
@@ -41,7 +42,12 @@ WorkSizes to_work_sizes(const tuner::Config& c) {
 
 tuner::Config to_tuner_config(const tuner::Space& space, const BvhConfig& bvh,
                               const WorkSizes& work) {
-  tuner::Config c = to_tuner_config(space, bvh);
+  return to_tuner_config(space, AccelChoice::tuned(bvh), work);
+}
+
+tuner::Config to_tuner_config(const tuner::Space& space, const AccelChoice& choice,
+                              const WorkSizes& work) {
+  tuner::Config c = to_tuner_config(space, choice);
   // Only the active size is set: the other one may hold any value, the scheduler ignores it.
   c.set_enum("scheduler", work.wavefront ? "wavefront" : "tile");
   if (work.wavefront)

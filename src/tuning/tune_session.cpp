@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "scene/camera_spline.h"
 #include "scene/indicators.h"
@@ -34,8 +35,16 @@ std::vector<CameraDesc> camera_positions(const Scene& scene, int path_index, int
 }
 
 std::string tuning_key(const TuneOptions& o) {
-  return fmt::format("{}/{}/{}x{}/{}spp/{}b", o.work_sizes ? "bvh+work" : "bvh",
-                     to_string(o.objective), o.width, o.height, o.spp, o.max_bounces);
+  std::string key = fmt::format("{}{}/{}/{}x{}/{}spp/{}b", o.native_in_space ? "backend+" : "",
+                                o.work_sizes ? "bvh+work" : "bvh", to_string(o.objective), o.width,
+                                o.height, o.spp, o.max_bounces);
+  // Tiles were the only scheduler before the key named it: no suffix means tiles.
+  return o.wavefront ? key + "/wavefront" : key;
+}
+
+tuner::Space make_tune_space(const TuneOptions& o, const RenderSettings& settings) {
+  tuner::Space base = o.native_in_space ? make_backend_space() : make_bvh_space();
+  return o.work_sizes ? make_render_space(settings, std::move(base)) : base;
 }
 
 TuneReport run_tune_session(const TuneOptions& o,
@@ -63,11 +72,9 @@ TuneReport run_tune_session(const TuneOptions& o,
   settings.height = o.height;
   settings.max_bounces = o.max_bounces;
   settings.seed = o.seed;
-  // The BVH is tuned on the tile scheduler, one ray at a time as in the study we reproduce
-  // (DESIGN 6), whatever the render default: it keeps tuning keys and databases comparable.
-  // --work-sizes lets the tuner choose the scheduler.
-  settings.quality.wavefront = false;
-  tuner::Space space = o.work_sizes ? make_render_space(settings) : make_bvh_space();
+  settings.quality.wavefront = o.wavefront;
+  const tuner::Space space = make_tune_space(o, settings);
+  options.search_seeds = tuning_seeds(space, o.objective == Objective::kTotal);
   tuner::HybridTuner tuner(space, make_indicator_schema(), options);
   // Without --work-sizes every frame keeps the settings' scheduler and sizes.
   auto work_of = [&](const tuner::Config& c) {
@@ -75,32 +82,55 @@ TuneReport run_tune_session(const TuneOptions& o,
   };
 
   FrameBench bench(scene, settings, o.spp, o.objective);
-  const BvhConfig default_config;
+  const AccelChoice default_choice = AccelChoice::tuned(BvhConfig{});
+  const AccelChoice native_choice = AccelChoice::native();
   const WorkSizes default_work = work_of(space.default_config());
-  // Warm-up: threads, caches, page faults (not counted).
-  bench.run(default_config, default_work, cameras[0]);
+  // Warm-up: threads, caches, page faults, both backends' first trees (not counted).
+  bench.run(native_choice, default_work, cameras[0]);
+  bench.run(default_choice, default_work, cameras[0]);
 
   TuneReport report;
   TuneProgress progress;
   progress.frames_total = o.iterations * static_cast<int>(cameras.size());
-  auto measure_median = [&](const BvhConfig& config, const WorkSizes& work,
-                            const CameraDesc& camera) {
-    std::vector<double> ms;
+  // Medians of baseline_repeats frames of each candidate, the candidates interleaved and their
+  // order reversed every other repeat, so that a drift of the shared machine's load hits all of
+  // them alike. Reversing also saves rebuilds between two tuned candidates under the render
+  // objective (D N C | C N D | D N C rebuilds the tuned tree 4 times instead of 6).
+  using Candidate = std::pair<AccelChoice, WorkSizes>;
+  auto measure_interleaved = [&](const std::vector<Candidate>& candidates,
+                                 const CameraDesc& camera) {
+    std::vector<std::vector<double>> ms(candidates.size());
     for (int k = 0; k < o.baseline_repeats; ++k)
-      ms.push_back(bench.run(config, work, camera).cost_ms(o.objective));
-    return median(ms);
+      for (size_t j = 0; j < candidates.size(); ++j) {
+        size_t i = k % 2 == 0 ? j : candidates.size() - 1 - j;
+        ms[i].push_back(
+            bench.run(candidates[i].first, candidates[i].second, camera).cost_ms(o.objective));
+      }
+    // Identical candidates (the chosen configuration may be the default or native itself) are
+    // one configuration measured more often: they share the median of all their frames, so a
+    // configuration compared with itself reports exactly 1, not the machine's noise.
+    std::vector<double> medians(candidates.size());
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      std::vector<double> pooled;
+      for (size_t j = 0; j < candidates.size(); ++j)
+        if (candidates[j] == candidates[i]) pooled.insert(pooled.end(), ms[j].begin(), ms[j].end());
+      medians[i] = median(pooled);
+    }
+    return medians;
   };
   for (size_t ci = 0; ci < cameras.size(); ++ci) {
     tuner::State state = to_tuner_state(compute_indicators(scene_indicators, cameras[ci]));
     CameraTuneResult r;
     r.camera = static_cast<int>(ci);
-    // The baseline is measured outside the tuner: it is the yardstick, not a tuning decision.
-    r.default_ms = measure_median(default_config, default_work, cameras[ci]);
-    double best_ms = r.default_ms;
+    // One frame of the default for the progress bar's running speedup only: the yardsticks
+    // are measured after the search, beside the chosen configuration.
+    const double reference_ms =
+        bench.run(default_choice, default_work, cameras[ci]).cost_ms(o.objective);
+    double best_ms = reference_ms;
     for (int it = 0; it < o.iterations; ++it) {
       tuner::Config c = tuner.suggest(state);
       if (it == 0) r.mode = tuner.mode() == tuner::TunerMode::kSearch ? "search" : "exploit";
-      FrameCost cost = bench.run(to_bvh_config(c), work_of(c), cameras[ci]);
+      FrameCost cost = bench.run(to_accel_choice(c), work_of(c), cameras[ci]);
       tuner::Extras extras = {{"build_ms", cost.build_ms}, {"render_ms", cost.render_ms}};
       if (cost.ok) {
         tuner.report(c, cost.cost_ms(o.objective) / 1000.0, extras);
@@ -115,21 +145,30 @@ TuneReport run_tune_session(const TuneOptions& o,
         progress.camera = r.camera;
         progress.frame = it;
         ++progress.frames_done;
-        progress.best_speedup = best_ms > 0 ? r.default_ms / best_ms : 0.0;
+        progress.best_speedup = best_ms > 0 ? reference_ms / best_ms : 0.0;
         on_frame(progress);
       }
     }
     const tuner::Config best = tuner.best(state);
-    const BvhConfig chosen = to_bvh_config(best);
+    const AccelChoice chosen = to_accel_choice(best);
     const WorkSizes chosen_work = work_of(best);
-    r.chosen_ms = measure_median(chosen, chosen_work, cameras[ci]);
+    // The baselines are measured outside the tuner: they are yardsticks, not tuning decisions.
+    std::vector<double> ms = measure_interleaved(
+        {{default_choice, default_work}, {native_choice, default_work}, {chosen, chosen_work}},
+        cameras[ci]);
+    r.default_ms = ms[0];
+    r.native_ms = ms[1];
+    r.chosen_ms = ms[2];
     r.config = chosen.to_string();
     if (o.work_sizes) r.config += "," + chosen_work.to_string();
+    r.backend = to_string(chosen.backend);
     if (auto s = tuner.summary(state)) r.converged = s->converged;
     if (log)
       log(fmt::format(
-          "camera {:>3} {:<8} default {:8.2f} ms  chosen {:8.2f} ms  speedup {:5.2f}  {}", r.camera,
-          r.mode, r.default_ms, r.chosen_ms, r.speedup(), r.config));
+          "camera {:>3} {:<8} default {:8.2f} ms  native {:8.2f} ms  chosen {:8.2f} ms  "
+          "speedup {:5.2f}  vs native {:5.2f}  {}",
+          r.camera, r.mode, r.default_ms, r.native_ms, r.chosen_ms, r.speedup(), r.vs_native(),
+          r.config));
     report.cameras.push_back(r);
   }
   return report;

@@ -1,7 +1,9 @@
 // `tuneray tune`: the renderer tuning its BVH online along a camera path. For each camera
 // position: compute the indicators, ask the tuner, rebuild the BVH if the configuration changed,
 // render, report the cost. Everything goes to the tuning database, so a second run on the same
-// database starts with trained predictors.
+// database starts with trained predictors. The search space holds the backend (tuned BVH or
+// native Embree) unless told otherwise, and every camera ends with the chosen configuration
+// measured against the default one and against native Embree in the same interleaved repeats.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tuner/space.h"
 #include "tuning/frame_bench.h"
 
 namespace tuneray {
@@ -27,7 +30,13 @@ struct TuneOptions {
   int width = 320, height = 180;
   int max_bounces = 3;
   uint64_t seed = 1;
-  int baseline_repeats = 3;  // side-by-side re-measurements of default and chosen
+  // Interleaved re-measurements of default, native and chosen (identical ones pooled).
+  int baseline_repeats = 3;
+  // The scheduler frames are measured on (with work_sizes: the one the search starts from). The
+  // renderer's default, since the speed that matters is the one users get.
+  bool wavefront = QualityOptions{}.wavefront;
+  // Native Embree as a choice of the search (make_backend_space); false: the tuned BVH only.
+  bool native_in_space = true;
   // Also tune the scheduler and its work size (tuning/render_space.h), under another tuning key.
   bool work_sizes = false;
   bool progress = true;
@@ -37,12 +46,16 @@ struct CameraTuneResult {
   int camera = 0;
   std::string mode;  // "search" or "exploit"
   int frames = 0;
-  double default_ms = 0;      // median of baseline_repeats, measured beside chosen_ms
+  // Medians of baseline_repeats, the three measured in the same interleaved repeats.
+  double default_ms = 0;      // the default configuration (Embree's recommended, tuned BVH)
   double chosen_ms = 0;       // the configuration the tuner settled on
+  double native_ms = 0;       // native Embree as `render --accel native` builds it
   double accumulated_ms = 0;  // sum of the costs of all frames at this camera
-  std::string config;         // chosen configuration (BVH, then work sizes when tuned)
+  std::string config;         // chosen configuration (backend and BVH, then work sizes if tuned)
+  std::string backend;        // of the chosen configuration: "tuned" or "native"
   bool converged = false;
   double speedup() const { return chosen_ms > 0 ? default_ms / chosen_ms : 0.0; }
+  double vs_native() const { return chosen_ms > 0 ? native_ms / chosen_ms : 0.0; }
 };
 
 struct TuneReport {
@@ -53,13 +66,18 @@ struct TuneReport {
 struct TuneProgress {
   int camera = 0, frame = 0;  // of this frame
   int frames_done = 0, frames_total = 0;
-  double best_speedup = 0;  // default cost / best cost seen so far at this camera
+  double best_speedup = 0;  // default cost (one frame) / best cost seen so far at this camera
 };
 
 // The database namespace of a session: costs are only comparable at the same objective, image
-// size, spp, path length and search space, so samples of the space with work sizes are stored
-// apart from BVH-only ones.
+// size, spp, path length, scheduler and search space, so samples of the space with the backend
+// or with work sizes are stored apart from BVH-only ones, and wavefront ones apart from tile
+// ones. The BVH-only space on tiles keeps the key it always had, so older databases stay valid.
 std::string tuning_key(const TuneOptions& options);
+
+// The search space of a session (make_backend_space or make_bvh_space, with work sizes when
+// asked for), its defaults from `settings`.
+tuner::Space make_tune_space(const TuneOptions& options, const RenderSettings& settings);
 
 // Runs the loop; `log` receives one line per camera, `on_frame` is called after every frame
 // (both may be empty).

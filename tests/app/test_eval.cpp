@@ -62,28 +62,84 @@ TEST(Eval, QuickProfileProducesAConsistentReport) {
         EXPECT_GT(fs::file_size(p), 1000u) << p;
       }
 
-  // Every summary row appears in the report with the same numbers.
+  // Every summary row appears in the report with the same numbers, in the report's order.
   auto summary = read_csv(out / "summary.csv");
   ASSERT_GE(summary.size(), 5u);  // header + 2 scenes x 2 objectives
+  auto col = [](const std::vector<std::string>& header, const std::string& name) {
+    auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name;
+    return static_cast<size_t>(it - header.begin());
+  };
+  const auto& sh = summary[0];
   for (size_t i = 1; i < summary.size(); ++i) {
     const auto& row = summary[i];
+    auto c = [&](const char* name) { return row[col(sh, name)]; };
     std::string expected =
-        "| " + row[0] + " | " + row[2] + " | " + row[3] + " | " + row[4] + " | " + row[5] + " |";
+        "| " + c("scene") + " | " + c("cameras") + " | " + c("search_speedup_median") + " | " +
+        c("search_native_speedup_median") + " | " + c("nn_speedup_geomean") + " | " +
+        c("rbf_speedup_geomean") + " | " + c("nn_overhead_reduction_median") + " | " +
+        c("rbf_overhead_reduction_median") + " | " + c("nn_roofline_mean") + " | " +
+        c("rbf_roofline_mean") + " | " + c("nn_break_even_median") + " (" + c("nn_never") + ") | " +
+        c("rbf_break_even_median") + " (" + c("rbf_never") + ") | " +
+        c("nn_native_speedup_median") + " | " + c("rbf_native_speedup_median") + " |\n";
     EXPECT_NE(report.find(expected), std::string::npos) << "missing in report: " << expected;
   }
+  EXPECT_NE(report.find("search speedup over native Embree"), std::string::npos);
 
-  // The summary's search speedup is the median of the per-camera values in cameras.csv.
+  // The summary's speedups over default and over native are the medians of the per-camera
+  // values in cameras.csv, and each camera's over-native value is its native / converged cost.
   auto cameras = read_csv(out / "cameras.csv");
-  std::map<std::string, std::vector<double>> speedups;
-  for (size_t i = 1; i < cameras.size(); ++i)
-    speedups[cameras[i][0] + "/" + cameras[i][1]].push_back(std::stod(cameras[i][6]));
-  for (size_t i = 1; i < summary.size(); ++i) {
-    auto v = speedups[summary[i][0] + "/" + summary[i][1]];
-    ASSERT_EQ(v.size(), 6u);  // quick profile: 6 cameras
-    std::sort(v.begin(), v.end());
-    double median = 0.5 * (v[2] + v[3]);
-    EXPECT_NEAR(std::stod(summary[i][3]), median, 1.5e-3) << summary[i][0];
+  const auto& ch = cameras[0];
+  std::map<std::string, std::vector<double>> speedups, native_speedups;
+  for (size_t i = 1; i < cameras.size(); ++i) {
+    const auto& row = cameras[i];
+    const std::string key = row[col(ch, "scene")] + "/" + row[col(ch, "objective")];
+    speedups[key].push_back(std::stod(row[col(ch, "search_speedup")]));
+    const double native = std::stod(row[col(ch, "native_speedup")]);
+    native_speedups[key].push_back(native);
+    const double native_ms = std::stod(row[col(ch, "native_ms")]);
+    const double converged_ms = std::stod(row[col(ch, "converged_ms")]);
+    EXPECT_GT(native_ms, 0.0);
+    EXPECT_NEAR(native, native_ms / converged_ms, 2e-3 * (1 + native)) << key;
   }
+  auto median_of = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  };
+  for (size_t i = 1; i < summary.size(); ++i) {
+    const std::string key = summary[i][0] + "/" + summary[i][1];
+    ASSERT_EQ(speedups[key].size(), 6u);  // quick profile: 6 cameras
+    EXPECT_NEAR(std::stod(summary[i][col(sh, "search_speedup_median")]), median_of(speedups[key]),
+                1.5e-3)
+        << key;
+    EXPECT_NEAR(std::stod(summary[i][col(sh, "search_native_speedup_median")]),
+                median_of(native_speedups[key]), 1.5e-3)
+        << key;
+  }
+
+  // The predictors' over-native medians come from predictions.csv.
+  auto predictions = read_csv(out / "predictions.csv");
+  const auto& ph = predictions[0];
+  std::map<std::string, std::vector<double>> predicted_native;
+  for (size_t i = 1; i < predictions.size(); ++i) {
+    const auto& row = predictions[i];
+    predicted_native[row[col(ph, "scene")] + "/" + row[col(ph, "objective")] + "/" +
+                     row[col(ph, "predictor")]]
+        .push_back(std::stod(row[col(ph, "native_speedup")]));
+  }
+  for (size_t i = 1; i < summary.size(); ++i)
+    for (const char* predictor : {"nn", "rbf"}) {
+      auto v = predicted_native[summary[i][0] + "/" + summary[i][1] + "/" + predictor];
+      if (v.empty()) continue;
+      EXPECT_NEAR(std::stod(summary[i][col(sh, std::string(predictor) + "_native_speedup_median")]),
+                  median_of(v), 1.5e-3)
+          << summary[i][0] << " " << predictor;
+    }
+
+  // The search plot shows both series per scene: 2 scenes x (over default, over native).
+  const std::string plot_script = read_file(out / "plots" / "search_speedup_render.png.gp");
+  EXPECT_NE(plot_script.find("index 3 "), std::string::npos) << plot_script;
+  EXPECT_NE(plot_script.find("over native"), std::string::npos) << plot_script;
 
   // A second run resumes from the database: the searches are complete, so no frame is measured
   // again and the recorded search costs (noisy timings) come back identical.

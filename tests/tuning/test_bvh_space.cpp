@@ -5,6 +5,7 @@
 
 #include "tuning/bvh_space.h"
 #include "tuning/tuner_state.h"
+#include "tuning_fixtures.h"
 
 namespace tuneray {
 namespace {
@@ -17,17 +18,7 @@ TEST(BvhSpace, DefaultsAreEmbreesRecommendedOnes) {
 
 TEST(BvhSpace, RoundTripsEveryParameter) {
   tuner::Space space = make_bvh_space();
-  BvhConfig b;
-  b.quality = BvhQuality::kHigh;
-  b.branching = 8;
-  b.max_depth = 40;
-  b.sah_block_size = 4;
-  b.min_leaf = 2;
-  b.max_leaf = 12;
-  b.set_cost_ratio(4.0f);
-  b.is_static = true;
-  b.compact = true;
-  b.robust = true;
+  const BvhConfig b = testing::every_parameter_changed();
   BvhConfig back = to_bvh_config(to_tuner_config(space, b));
   EXPECT_EQ(back.to_string(), b.to_string());
 }

@@ -85,5 +85,69 @@ TEST(FrameBench, WorkSizesChangeWithoutRebuildAndGiveTheSameFilm) {
   EXPECT_FALSE(tiles.run(config, scene.cameras[0]).rebuilt);
 }
 
+// The backend is a tuning choice: each frame must really be rendered by the backend asked for,
+// and each backend keeps its own tree, so alternating between them (tune's baselines) never
+// rebuilds a tree that did not change.
+TEST(FrameBench, TheBackendSwitchSwitchesTheAcceleratorAndKeepsBothTrees) {
+  Scene scene = load_scene("cornell");
+  FrameBench bench(scene, tiny(), 1, Objective::kRender);
+  FrameCost native = bench.run(AccelChoice::native(), scene.cameras[0]);
+  EXPECT_TRUE(native.ok);
+  EXPECT_TRUE(native.rebuilt);
+  EXPECT_EQ(bench.accel().name(), "native");
+  EXPECT_NE(bench.accel().describe().find("quality=medium"), std::string::npos);
+  EXPECT_EQ(bench.build_stats().node_count, 0u);  // Embree does not tell
+
+  BvhConfig wide;
+  wide.branching = 8;
+  EXPECT_TRUE(bench.run(wide, scene.cameras[0]).rebuilt);
+  EXPECT_EQ(bench.accel().name(), "tuned");
+  EXPECT_EQ(bench.accel().describe(), wide.to_string());
+  EXPECT_GT(bench.build_stats().node_count, 0u);  // our statistics walk counts them
+
+  FrameCost back = bench.run(AccelChoice::native(), scene.cameras[0]);
+  EXPECT_FALSE(back.rebuilt);
+  EXPECT_EQ(bench.accel().name(), "native");
+  EXPECT_EQ(bench.build_stats().node_count, 0u);
+  EXPECT_FALSE(bench.run(wide, scene.cameras[0]).rebuilt);
+  EXPECT_EQ(bench.accel().name(), "tuned");
+
+  // Another native quality is another tree.
+  EXPECT_TRUE(bench.run(AccelChoice::native(BvhQuality::kHigh), scene.cameras[0]).rebuilt);
+  EXPECT_NE(bench.accel().describe().find("quality=high"), std::string::npos);
+  // Both backends render every sample of the frame.
+  size_t samples = 0;
+  for (int y = 0; y < tiny().height; ++y)
+    for (int x = 0; x < tiny().width; ++x) samples += bench.film().samples(x, y);
+  EXPECT_EQ(samples, static_cast<size_t>(tiny().width * tiny().height));
+}
+
+TEST(FrameBench, NativeUnderTheTotalObjectiveRebuildsEveryFrame) {
+  Scene scene = load_scene("cornell");
+  FrameBench bench(scene, tiny(), 1, Objective::kTotal);
+  bench.run(AccelChoice::native(), scene.cameras[0]);
+  FrameCost c = bench.run(AccelChoice::native(), scene.cameras[0]);
+  EXPECT_TRUE(c.rebuilt);
+  EXPECT_GT(c.build_ms, 0.0);
+  EXPECT_DOUBLE_EQ(c.cost_ms(Objective::kTotal), c.build_ms + c.render_ms);
+}
+
+TEST(FrameBench, ARefusedTunedBuildCostsInfinityAndLeavesNativeBuilt) {
+  Scene scene = load_scene("voxels");
+  FrameBench bench(scene, tiny(), 1, Objective::kRender);
+  EXPECT_TRUE(bench.run(AccelChoice::native(), scene.cameras[0]).ok);
+  BvhConfig refused;
+  refused.max_depth = 8;
+  refused.max_leaf = 1;
+  FrameCost c = bench.run(AccelChoice::tuned(refused), scene.cameras[0]);
+  EXPECT_FALSE(c.ok);
+  EXPECT_TRUE(std::isinf(c.cost_ms(Objective::kRender)));
+  EXPECT_TRUE(std::isinf(c.cost_ms(Objective::kTotal)));
+  FrameCost native = bench.run(AccelChoice::native(), scene.cameras[0]);
+  EXPECT_TRUE(native.ok);
+  EXPECT_FALSE(native.rebuilt);
+  EXPECT_EQ(bench.accel().name(), "native");
+}
+
 }  // namespace
 }  // namespace tuneray

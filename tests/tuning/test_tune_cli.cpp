@@ -17,18 +17,20 @@ TEST(TuneCli, WorkSizesJoinTheSearch) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("scheduler, tile_size, batch_size"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("1 of 1 cameras searched"), std::string::npos) << r.output;
-  // The chosen configuration: the BVH parameters, then the scheduler and its active size.
-  EXPECT_NE(r.output.find("robust="), std::string::npos) << r.output;
+  // The chosen configuration: the backend (and BVH parameters under tuned), then the scheduler
+  // and its active size.
+  EXPECT_NE(r.output.find("  backend="), std::string::npos) << r.output;
   const bool tile = r.output.find(",scheduler=tile,tile_size=") != std::string::npos;
   const bool wave = r.output.find(",scheduler=wavefront,batch_size=") != std::string::npos;
   EXPECT_TRUE(tile || wave) << r.output;
 
-  // Without the option the summary stays BVH only, on the same database.
+  // Without the option the configurations name no work size, on the same database.
   testing::CommandResult plain =
       testing::run_tuneray({"tune", "cornell", "--cameras", "1", "--iterations", "2", "--size",
                             "32x18", "--db", db.str(), "--quiet"});
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
-  EXPECT_EQ(plain.output.find("scheduler"), std::string::npos) << plain.output;
+  EXPECT_EQ(plain.output.find(",scheduler="), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("  backend="), std::string::npos) << plain.output;
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 // with BVH-only samples of the same database, and the BVH-only key is the one it always was.
 #include <gtest/gtest.h>
 
+#include "tuning_fixtures.h"
+
 #include "tuner/hardware_signature.h"
 #include "tuner/temp_path.h"
 #include "tuner/tuning_db.h"
@@ -12,6 +14,9 @@ namespace {
 
 TEST(TuneWorkSizes, TuningKeyDiffersOnlyWithWorkSizes) {
   TuneOptions o;
+  EXPECT_EQ(tuning_key(o), "backend+bvh/render/320x180/1spp/3b/wavefront");
+  o.native_in_space = false;
+  o.wavefront = false;
   EXPECT_EQ(tuning_key(o), "bvh/render/320x180/1spp/3b");  // existing databases stay valid
   TuneOptions w = o;
   w.work_sizes = true;
@@ -23,16 +28,10 @@ TEST(TuneWorkSizes, TuningKeyDiffersOnlyWithWorkSizes) {
 
 TEST(TuneWorkSizes, SamplesAreStoredApartFromBvhOnlyOnes) {
   const tuner::testing::TempPath db_path("tune-work-sizes.db");
-  TuneOptions o;
-  o.scene = "cornell";
-  o.db_path = db_path.str();
-  o.cameras = 1;
+  TuneOptions o = testing::tiny_tune_session(db_path.str());
   o.iterations = 4;
-  o.width = 16;
-  o.height = 12;
   o.baseline_repeats = 1;
   o.epsilon = 1;
-  o.progress = false;
   TuneOptions w = o;
   w.work_sizes = true;
 

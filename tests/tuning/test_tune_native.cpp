@@ -1,0 +1,127 @@
+// `tune` with native Embree in the search space: tuning keys name the space and the scheduler,
+// every search measures native, and every camera reports native measured beside the default and
+// the chosen configuration.
+#include <gtest/gtest.h>
+
+#include "tuning_fixtures.h"
+
+#include <set>
+#include <string>
+
+#include "tuner/hardware_signature.h"
+#include "tuner/temp_path.h"
+#include "tuner/tuning_db.h"
+#include "tuning/accel_choice.h"
+#include "tuning/tune_session.h"
+
+namespace tuneray {
+namespace {
+
+TuneOptions tiny_session(const std::string& db) {
+  TuneOptions o = testing::tiny_tune_session(db);
+  o.baseline_repeats = 3;
+  o.epsilon = 1;
+  return o;
+}
+
+TEST(TuneNative, TuningKeyNamesTheSpaceAndTheScheduler) {
+  TuneOptions o;
+  EXPECT_TRUE(o.native_in_space);
+  EXPECT_EQ(o.wavefront, QualityOptions{}.wavefront);  // the renderer's default scheduler
+  EXPECT_EQ(tuning_key(o), "backend+bvh/render/320x180/1spp/3b/wavefront");
+  // The BVH-only space on tiles keeps the key older databases were written with.
+  TuneOptions legacy = o;
+  legacy.native_in_space = false;
+  legacy.wavefront = false;
+  EXPECT_EQ(tuning_key(legacy), "bvh/render/320x180/1spp/3b");
+  std::set<std::string> keys;
+  for (bool native : {false, true})
+    for (bool wave : {false, true})
+      for (bool work : {false, true}) {
+        TuneOptions k = o;
+        k.native_in_space = native;
+        k.wavefront = wave;
+        k.work_sizes = work;
+        keys.insert(tuning_key(k));
+      }
+  EXPECT_EQ(keys.size(), 8u);
+}
+
+TEST(TuneNative, SpaceFollowsTheOptions) {
+  TuneOptions o;
+  RenderSettings settings;
+  EXPECT_EQ(make_tune_space(o, settings).param(0).name, "backend");
+  o.native_in_space = false;
+  EXPECT_EQ(make_tune_space(o, settings).param(0).name, "quality");
+  o.work_sizes = true;
+  tuner::Space work = make_tune_space(o, settings);
+  EXPECT_EQ(work.param(work.size() - 3).name, "scheduler");
+}
+
+// The first simplex spans both backends, so a search of 13 frames (12 parameters + 1) has
+// measured native Embree; and every camera reports it beside default and chosen.
+TEST(TuneNative, EverySearchMeasuresNativeAndTheReportHasIt) {
+  const tuner::testing::TempPath db_path("tune-native.db");
+  TuneOptions o = tiny_session(db_path.str());
+  o.iterations = 13;
+  TuneReport report = run_tune_session(o);
+  ASSERT_EQ(report.cameras.size(), 1u);
+  const CameraTuneResult& c = report.cameras[0];
+  EXPECT_GT(c.default_ms, 0.0);
+  EXPECT_GT(c.native_ms, 0.0);
+  EXPECT_GT(c.chosen_ms, 0.0);
+  EXPECT_DOUBLE_EQ(c.vs_native(), c.native_ms / c.chosen_ms);
+  EXPECT_DOUBLE_EQ(c.speedup(), c.default_ms / c.chosen_ms);
+  EXPECT_TRUE(c.backend == "tuned" || c.backend == "native") << c.backend;
+  EXPECT_EQ(c.config.rfind("backend=" + c.backend, 0), 0u) << c.config;
+
+  tuner::TuningDb db(db_path.str());
+  auto sig = db.find_signature(tuning_key(o), tuner::hardware_signature());
+  ASSERT_TRUE(sig.has_value());
+  int native = 0, tuned = 0;
+  for (const auto& s : db.samples(*sig)) {
+    native += s.config.find("backend=native") != std::string::npos;
+    tuned += s.config.find("backend=tuned") != std::string::npos;
+  }
+  EXPECT_GT(native, 0);
+  EXPECT_GT(tuned, 0);
+}
+
+// A search of one frame measures only its start, the default configuration, and chooses it:
+// compared with itself it must report exactly 1, whatever the noise of the interleaved frames.
+TEST(TuneNative, AConfigurationComparedWithItselfReportsExactlyOne) {
+  const tuner::testing::TempPath db_path("tune-itself.db");
+  TuneOptions o = tiny_session(db_path.str());
+  o.iterations = 1;
+  TuneReport report = run_tune_session(o);
+  ASSERT_EQ(report.cameras.size(), 1u);
+  const CameraTuneResult& c = report.cameras[0];
+  ASSERT_EQ(c.config, AccelChoice::tuned(BvhConfig{}).to_string());
+  EXPECT_EQ(c.speedup(), 1.0);
+  EXPECT_EQ(c.default_ms, c.chosen_ms);
+  EXPECT_NE(c.native_ms, c.chosen_ms);  // native is another configuration, measured apart
+}
+
+// Without the backend in the space, native is still the yardstick, and the samples go under the
+// BVH-only key of the same file (which would throw if the keys collided).
+TEST(TuneNative, TunedOnlyStillMeasuresNative) {
+  const tuner::testing::TempPath db_path("tune-tuned-only.db");
+  TuneOptions o = tiny_session(db_path.str());
+  o.iterations = 3;
+  o.baseline_repeats = 1;
+  TuneOptions t = o;
+  t.native_in_space = false;
+  TuneReport with_native = run_tune_session(o);
+  TuneReport tuned_only = run_tune_session(t);
+  ASSERT_EQ(tuned_only.cameras.size(), 1u);
+  EXPECT_GT(tuned_only.cameras[0].native_ms, 0.0);
+  EXPECT_EQ(tuned_only.cameras[0].backend, "tuned");
+  tuner::TuningDb db(db_path.str());
+  auto sig = db.find_signature(tuning_key(t), tuner::hardware_signature());
+  ASSERT_TRUE(sig.has_value());
+  for (const auto& s : db.samples(*sig))
+    EXPECT_EQ(s.config.find("backend"), std::string::npos) << s.config;
+}
+
+}  // namespace
+}  // namespace tuneray
