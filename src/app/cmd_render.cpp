@@ -15,6 +15,7 @@
 #include "app/ground_truth.h"
 #include "app/progress.h"
 #include "app/quality_cli.h"
+#include "app/resource_limits.h"
 #include "image/io.h"
 #include "render/blue_noise_sampler.h"
 #include "render/film.h"
@@ -44,6 +45,7 @@ struct RenderArgs {
   std::string scenes_dir;
   float exposure = 0;
   bool quiet = false;
+  bool profile_phases = false;
   double frame_ms = 0;  // > 0: frame-budget mode
   int frames = 1;
   double until_rmse = 0;  // > 0: stop once the image's estimated RMSE is below this
@@ -142,6 +144,7 @@ int run_render(const RenderArgs& a) {
   settings.seed = a.seed;
   settings.strategy = parse_strategy(a.strategy);
   settings.quality = resolve_quality(a.quality);
+  settings.quality.profile_phases = a.profile_phases;
   if (a.quality.adaptive_on && a.frame_ms <= 0)
     throw std::invalid_argument("--adaptive needs the frame-budget mode (--frame-ms)");
   if (!a.truth_dir.empty()) {
@@ -156,9 +159,10 @@ int run_render(const RenderArgs& a) {
     throw std::invalid_argument("--until-rmse takes --spp as its limit, not --frame-ms");
 
   std::unique_ptr<tbb::global_control> thread_limit;
-  if (a.threads > 0)
+  check_image_memory(width, height, "image");
+  if (const int threads = clamp_threads(a.threads); threads > 0)
     thread_limit = std::make_unique<tbb::global_control>(
-        tbb::global_control::max_allowed_parallelism, static_cast<size_t>(a.threads));
+        tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 
   auto t0 = std::chrono::steady_clock::now();
   LoadOptions load_options;
@@ -237,6 +241,10 @@ int run_render(const RenderArgs& a) {
       {"invalid_samples", total.invalid_samples},
       {"outputs", outputs},
   };
+  if (a.profile_phases)
+    report["phases_ms"] = {{"intersect", total.intersect_ms},
+                           {"shading", total.shading_ms},
+                           {"shadow", total.shadow_ms}};
   write_report(a.report, report);
   if (!a.quiet) {
     std::cout << "scene     " << a.scene << " (" << scene.triangles.size()
@@ -246,6 +254,10 @@ int run_render(const RenderArgs& a) {
               << "render    " << width << "x" << height << ", "
               << static_cast<double>(total.samples) / (width * height) << " spp in "
               << total.render_ms << " ms (" << total.mrays_per_s() << " Mrays/s)\n";
+    if (a.profile_phases)
+      std::cout << "phases    intersect " << total.intersect_ms << " ms, shading "
+                << total.shading_ms << " ms, shadow " << total.shadow_ms
+                << " ms (summed over threads)\n";
     for (const auto& out : outputs) std::cout << "wrote     " << out << "\n";
     if (!a.report.empty()) std::cout << "wrote     " << a.report << "\n";
     if (total.invalid_samples > 0)
@@ -289,6 +301,9 @@ CommandAction add_render_command(CLI::App& app) {
   cmd->add_option("--exposure", args->exposure, "Exposure in stops for PNG output")
       ->capture_default_str();
   cmd->add_flag("--quiet,-q", args->quiet, "No progress bar or summary");
+  cmd->add_flag("--profile-phases", args->profile_phases,
+                "Time intersection, shading and shadow rays apart (summary and report; costs a "
+                "little)");
   cmd->add_option("--frame-ms", args->frame_ms,
                   "Frame budget in ms: each frame adds as many spp as fit (replaces --spp)")
       ->check(CLI::Range(0.0, 1e7));

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/resource_limits.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"tuneray: a CPU path tracer that tunes its own acceleration structure"};
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   add(&tuneray::add_eval_command);
   add(&tuneray::add_compare_command);
 
+  tuneray::refuse_non_finite_numbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

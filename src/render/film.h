@@ -26,6 +26,10 @@ struct SquareSum {
 
 class Film {
  public:
+  // Upper bound of a render's memory per pixel: the film (sum, count, squares), the resolved
+  // image and its file encoding, the schedulers' and adaptive sampling's per-pixel arrays.
+  static constexpr uint64_t kBytesPerPixelBound = 128;
+
   Film(int width, int height)
       : sum_(width, height),
         samples_(static_cast<size_t>(width) * height, 0),

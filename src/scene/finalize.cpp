@@ -1,6 +1,7 @@
 #include "scene/finalize.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "scene/camera_spline.h"
 #include "scene/load.h"
@@ -10,6 +11,11 @@ namespace tuneray {
 namespace {
 
 const Vec3f kDiagonal = normalize(Vec3f(0.6f, 0.45f, 1.0f));
+
+// Beyond this, squared extents and surface areas summed over a million triangles (BVH cost
+// estimates, light pdfs) overflow float; no real scene comes near it (the solar system in
+// metres spans 1e13).
+constexpr float kMaxCoordinate = 1e15f;
 
 void check_invariants(const Scene& s) {
   auto fail = [&](const std::string& what) { throw SceneError(s.source + ": " + what); };
@@ -21,6 +27,18 @@ void check_invariants(const Scene& s) {
   for (const Triangle& t : s.triangles)
     for (uint32_t v : t.v)
       if (v >= s.positions.size()) fail("a triangle index is out of range");
+  for (size_t i = 0; i < s.positions.size(); ++i) {
+    const Vec3f& p = s.positions[i];
+    if (!(std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+          std::abs(p.z) <= kMaxCoordinate)) {
+      std::ostringstream where;
+      where << "vertex " << i << " at (" << p.x << ", " << p.y << ", " << p.z
+            << ") is non-finite or beyond +-" << kMaxCoordinate
+            << ", where float arithmetic in the BVH and the light sampling overflows; rescale "
+               "the scene";
+      fail(where.str());
+    }
+  }
   for (uint32_t id : s.material_ids)
     if (id >= s.materials.size()) fail("a material id is out of range");
   for (const Material& m : s.materials)

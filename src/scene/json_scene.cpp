@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "image/io.h"
+#include "image/texel_check.h"
 #include "scene/json_fields.h"
 #include "scene/loaders.h"
 #include "scene/merge.h"
@@ -105,6 +106,8 @@ void parse_environment(const JsonFields& j, const std::string& file, const LoadO
   } catch (const std::exception& e) {
     throw SceneError(file + ": environment map '" + path + "': " + e.what());
   }
+  if (auto bad = find_bad_texel(env.map))
+    throw SceneError(file + ": environment map '" + path + "': " + describe_bad_texel(*bad));
 }
 
 Scene load_meshes(const JsonFields& root, const std::string& file, const LoadOptions& options) {

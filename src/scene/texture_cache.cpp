@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "image/io.h"
+#include "image/texel_check.h"
 #include "scene/load.h"
 
 namespace tuneray {
@@ -24,6 +25,8 @@ int32_t TextureCache::get(const std::string& path, const std::string& referrer) 
     throw SceneError(referrer + ": cannot read texture '" + path + "': " + e.what());
   }
   if (texture.image.empty()) throw SceneError(referrer + ": texture '" + path + "' is empty");
+  if (auto bad = find_bad_texel(texture.image))
+    throw SceneError(referrer + ": texture '" + path + "': " + describe_bad_texel(*bad));
   auto index = static_cast<int32_t>(textures_.size());
   textures_.push_back(std::move(texture));
   index_of_path_.emplace(key, index);
