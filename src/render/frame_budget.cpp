@@ -10,7 +10,7 @@ namespace tuneray {
 
 bool FrameBudgetRenderer::adaptive_ready() const {
   const QualityOptions& q = renderer_.settings().quality;
-  return q.adaptive && min_samples_ >= static_cast<uint32_t>(std::max(2, q.adaptive_min_spp));
+  return q.adaptive && uniform_samples_ >= static_cast<uint32_t>(std::max(2, q.adaptive_min_spp));
 }
 
 PassStats FrameBudgetRenderer::add_samples(Film& film, double spp) {
@@ -21,18 +21,37 @@ PassStats FrameBudgetRenderer::add_samples(Film& film, double spp) {
     return renderer_.render_extra(film,
                                   allocate_adaptive_samples(film, std::max<uint64_t>(1, samples)));
   }
+  if (spp < 1.0 || partial_cursor_ != 0) return add_partial_pass(film, spp);
   auto whole = static_cast<uint32_t>(std::clamp(std::floor(spp), 1.0, 1e6));
   if (!s.quality.adaptive) {
-    PassStats stats = renderer_.render_pass(film, next_sample_, whole);
-    next_sample_ += whole;
+    PassStats stats = renderer_.render_pass(film, uniform_samples_, whole);
+    uniform_samples_ += whole;
     return stats;
   }
   // Uniform warm-up until the variance can be trusted; never past it, so the adaptive passes
   // start as early as they may.
   uint32_t min_spp = static_cast<uint32_t>(std::max(2, s.quality.adaptive_min_spp));
-  whole = std::min(whole, min_spp - min_samples_);
-  min_samples_ += whole;
+  whole = std::min(whole, min_spp - uniform_samples_);
+  uniform_samples_ += whole;
   return renderer_.render_extra(film, std::vector<uint32_t>(pixels, whole));
+}
+
+PassStats FrameBudgetRenderer::add_partial_pass(Film& film, double spp) {
+  const RenderSettings& s = renderer_.settings();
+  const size_t pixels = static_cast<size_t>(s.width) * s.height;
+  const auto wanted = static_cast<size_t>(std::llround(std::min(spp, 1.0) * pixels));
+  const size_t count = std::clamp<size_t>(wanted, 1, pixels - partial_cursor_);
+  std::vector<uint32_t> extra(pixels, 0);
+  std::fill_n(extra.begin() + static_cast<std::ptrdiff_t>(partial_cursor_), count, 1u);
+  // render_extra continues each pixel's sample indices from the film, so a round of partial
+  // passes gives every pixel the same sample a whole pass would have.
+  PassStats stats = renderer_.render_extra(film, extra);
+  partial_cursor_ += count;
+  if (partial_cursor_ == pixels) {
+    partial_cursor_ = 0;
+    ++uniform_samples_;
+  }
+  return stats;
 }
 
 void FrameBudgetRenderer::PassCost::update(double per_spp, double overhead) {
@@ -68,14 +87,12 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film) {
       double uniform_fit = (frame_ms_ - elapsed()) / uniform_cost_.ms_per_spp;
       fit = std::min(kAdaptiveProbePass, uniform_fit);
     } else {
-      fit = 1.0;
+      fit = kFirstPass;
     }
-    // Adaptive passes can be a fraction of a sample per pixel, uniform ones cannot. Every
-    // frame gets at least one pass.
-    double smallest = adaptive ? kSmallestAdaptivePass : 1.0;
-    if (fit < smallest) {
+    // Every frame gets at least one pass, of at least the smallest size.
+    if (fit < kSmallestPass) {
       if (!first_pass) break;
-      fit = smallest < 1.0 ? std::max(fit, smallest) : 1.0;
+      fit = kSmallestPass;
     }
     auto t0 = std::chrono::steady_clock::now();
     PassStats pass = add_samples(film, std::min(fit, 1e6));

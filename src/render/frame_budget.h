@@ -3,6 +3,7 @@
 // the film keeps accumulating across frames.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "render/film.h"
@@ -29,12 +30,18 @@ class FrameBudgetRenderer {
  private:
   // True once every pixel has the uniform samples adaptive sampling starts from.
   bool adaptive_ready() const;
-  // Adds `spp` samples per pixel on average: uniform passes round down to whole samples (at
-  // least 1); adaptive passes place round(spp x pixels) samples where the error is highest.
+  // Adds `spp` samples per pixel on average: uniform passes of at least one sample round down
+  // to whole samples, smaller ones give one sample to the next round(spp x pixels) pixels in
+  // row order (a partial pass), finishing the round before whole passes resume; adaptive passes
+  // place round(spp x pixels) samples where the error is highest.
   PassStats add_samples(Film& film, double spp);
+  PassStats add_partial_pass(Film& film, double spp);
 
-  // Below this many samples per pixel an adaptive pass is not worth its bookkeeping.
-  static constexpr double kSmallestAdaptivePass = 0.1;
+  // Below this many samples per pixel a pass is not worth its set-up and bookkeeping.
+  static constexpr double kSmallestPass = 0.1;
+  // The very first pass, before any cost is known: small enough that a 60 fps budget holds
+  // on small scenes.
+  static constexpr double kFirstPass = 0.25;
   // The first adaptive pass, before its cost per sample is known: adaptive samples go where
   // the error is, which is where paths are long (often 2-5x a uniform sample), so planning
   // it with the uniform cost would overrun the frame.
@@ -50,8 +57,10 @@ class FrameBudgetRenderer {
   const TileRenderer& renderer_;
   double frame_ms_;
   PassCost uniform_cost_, adaptive_cost_;
-  uint32_t next_sample_ = 0;  // uniform mode: sample index of the next pass
-  uint32_t min_samples_ = 0;  // adaptive mode: samples every pixel has
+  // Samples every pixel has from uniform passes (whole ones, or completed rounds of partial
+  // ones): the sample index of the next whole pass, and what adaptive sampling waits for.
+  uint32_t uniform_samples_ = 0;
+  size_t partial_cursor_ = 0;  // first pixel of the next partial pass; 0 = film uniform
 };
 
 }  // namespace tuneray

@@ -333,8 +333,9 @@ TEST(AdaptiveSampling, VarianceOfTheMeanMatchesTheSampleFormula) {
   EXPECT_NEAR(film.variance_of_mean(0, 0), 35.0 / 12.0, 1e-5);
 }
 
-// A budget far below one pass still adds exactly one sample per pixel per frame.
-TEST(FrameBudget, EveryFrameAddsAtLeastOneSamplePerPixel) {
+// A budget far below one pass adds a partial pass per frame: a quarter of the pixels first
+// (no cost known yet), then a tenth, in row order, until every pixel has exactly one sample.
+TEST(FrameBudget, TinyBudgetsAddPartialPassesThatCompleteARound) {
   Scene scene = load_scene("cornell");
   EmbreeNativeAccel accel;
   accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
@@ -345,9 +346,20 @@ TEST(FrameBudget, EveryFrameAddsAtLeastOneSamplePerPixel) {
   TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
   Film film(s.width, s.height);
   FrameBudgetRenderer budget(renderer, 1e-6);
-  for (int f = 0; f < 3; ++f) EXPECT_DOUBLE_EQ(budget.render_frame(film).spp, 1.0);
-  EXPECT_EQ(film.samples(0, 0), 3u);
-  EXPECT_EQ(film.samples(s.width - 1, s.height - 1), 3u);
+  const uint64_t pixels = static_cast<uint64_t>(s.width) * s.height;  // 1200
+  EXPECT_EQ(budget.render_frame(film).stats.samples, 300u);
+  EXPECT_EQ(film.samples(0, 0), 1u);
+  EXPECT_EQ(film.samples(299 % s.width, 299 / s.width), 1u);  // the quarter's last pixel
+  EXPECT_EQ(film.samples(300 % s.width, 300 / s.width), 0u);
+  uint64_t total = 300;
+  for (int f = 0; f < 8; ++f) {
+    uint64_t added = budget.render_frame(film).stats.samples;
+    EXPECT_EQ(added, f < 7 ? 120u : 60u) << "frame " << f + 1;  // the last one ends the round
+    total += added;
+  }
+  EXPECT_EQ(total, pixels);
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) ASSERT_EQ(film.samples(x, y), 1u) << x << "," << y;
 }
 
 // Adaptive frames keep every pixel's sample indices distinct: the image after the uniform
@@ -364,7 +376,12 @@ TEST(FrameBudget, AdaptiveWarmupEqualsUniformSampling) {
   TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
   Film film(s.width, s.height);
   FrameBudgetRenderer budget(renderer, 1e-6);
-  for (int f = 0; f < 3; ++f) budget.render_frame(film);
+  // Partial passes (the budget fits less than one) until three rounds are complete.
+  const uint64_t pixels = static_cast<uint64_t>(s.width) * s.height;
+  uint64_t total = 0;
+  for (int f = 0; f < 100 && total < 3 * pixels; ++f)
+    total += budget.render_frame(film).stats.samples;
+  ASSERT_EQ(total, 3 * pixels);
   RenderSettings plain = small_settings();
   Image expected = render(scene, plain, 3);
   EXPECT_EQ(equal_pixels(film.resolve(), expected), static_cast<size_t>(s.width * s.height));
