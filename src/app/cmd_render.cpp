@@ -16,6 +16,7 @@
 #include "app/progress.h"
 #include "app/quality_cli.h"
 #include "app/resource_limits.h"
+#include "image/atomic_file.h"
 #include "image/io.h"
 #include "render/blue_noise_sampler.h"
 #include "render/film.h"
@@ -98,8 +99,9 @@ void write_report(const std::string& path, const nlohmann::ordered_json& report)
   if (path.empty()) return;
   std::filesystem::path parent = std::filesystem::path(path).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
-  std::ofstream f(path);
-  if (!(f << report.dump(2) << "\n")) throw std::runtime_error("cannot write report " + path);
+  ReplacingFile f(path);
+  f << report.dump(2) << "\n";
+  f.commit();
 }
 
 // --truth-dir: the ground truth of `bench quality` (same cache, same key), read or rendered.

@@ -11,6 +11,7 @@
 #include "app/cli_parse.h"
 #include "app/commands.h"
 #include "app/progress.h"
+#include "image/atomic_file.h"
 #include "tuning/stats.h"
 #include "tuning/tune_session.h"
 
@@ -63,9 +64,9 @@ void write_json(const TuneArgs& a, const TuneReport& report) {
       {"failed_builds", report.failed_builds},
       {"speedup", {{"median", median(speedups)}, {"geomean", geometric_mean(speedups)}}},
       {"vs_native", {{"median", median(vs_native)}, {"geomean", geometric_mean(vs_native)}}}};
-  std::ofstream out(a.json);
-  if (!out) throw std::runtime_error("cannot write " + a.json);
+  ReplacingFile out(a.json);
   out << j.dump(2) << "\n";
+  out.commit();
 }
 
 int run_tune(TuneArgs& a) {

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "image/atomic_file.h"
 #include "image/formats.h"
 
 namespace tuneray {
@@ -68,16 +69,26 @@ Image read_image(const std::string& path, const ReadOptions& options) {
 void write_image(const std::string& path, const Image& image, const WriteOptions& options) {
   detail::check_dimensions(path, image.width(), image.height());
   const std::string ext = lower_extension(path);
-  if (ext == ".png") {
-    detail::write_png(path, image, options);
-  } else if (ext == ".exr") {
-    detail::write_exr(path, image);
-  } else if (ext == ".pfm") {
-    detail::write_pfm(path, image);
-  } else {
+  if (ext != ".png" && ext != ".exr" && ext != ".pfm")
     throw ImageError(path + ": cannot write images with extension '" + ext +
                      "' (writable: .png .exr .pfm)");
-  }
+  replace_file(path, [&](const std::string& temporary) {
+    try {
+      if (ext == ".png")
+        detail::write_png(temporary, image, options);
+      else if (ext == ".exr")
+        detail::write_exr(temporary, image);
+      else
+        detail::write_pfm(temporary, image);
+    } catch (const ImageError& e) {
+      // The writers name the file they were given: name the one the user asked for.
+      std::string message = e.what();
+      for (size_t at = message.find(temporary); at != std::string::npos;
+           at = message.find(temporary, at + path.size()))
+        message.replace(at, temporary.size(), path);
+      throw ImageError(message);
+    }
+  });
 }
 
 }  // namespace tuneray

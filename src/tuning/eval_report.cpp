@@ -11,6 +11,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "image/atomic_file.h"
 #include "tuning/eval_metrics.h"
 #include "tuning/stats.h"
 
@@ -20,10 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::ofstream open_out(const fs::path& path) {
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write " + path.string());
-  return f;
+// Written aside and renamed on commit(): a failed or killed run never leaves a truncated file.
+ReplacingFile open_out(const fs::path& path) {
+  return ReplacingFile(path.string());
 }
 
 // Numbers in CSV and report share one format, so the report can be checked against the CSV.
@@ -53,12 +53,14 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
                         num(total), c.converged_config, c.best_config, num(c.native_ms),
                         num(c.native_speedup()));
   }
+  cams.commit();
   auto frames = open_out(dir / "search_frames.csv");
   frames << "scene,objective,camera,frame,cost_ms\n";
   for (const CameraRecord& c : r.cameras)
     for (size_t k = 0; k < c.search_ms.size(); ++k)
       frames << fmt::format("{},{},{},{},{}\n", c.scene, c.objective, c.camera, k,
                             num(c.search_ms[k]));
+  frames.commit();
   auto preds = open_out(dir / "predictions.csv");
   preds << "scene,objective,repetition,camera,predictor,predicted_ms,search_total_ms,speedup,"
            "overhead_reduction,roofline,break_even,config,native_speedup\n";
@@ -67,6 +69,7 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
                          p.repetition, p.camera, p.predictor, num(p.predicted_ms),
                          num(p.search_total_ms), num(p.speedup), num(p.overhead_reduction),
                          num(p.roofline), num(p.break_even), p.config, num(p.native_speedup));
+  preds.commit();
 }
 
 // gnuplot script for one figure, written as both PNG and SVG.
@@ -78,6 +81,7 @@ void write_plot(const fs::path& dir, const std::string& stem, const std::string&
     else
       f << "set terminal svg size 900,500 font 'sans,10'\n";
     f << "set output '" << stem << "." << kind << "'\n" << body;
+    f.commit();
   }
 }
 
@@ -129,6 +133,7 @@ void write_plots(const EvalResults& r, const std::vector<EvalSummary>& summaries
                           block == 0 ? "plot " : ", ", file, block, x, k);
       ++block;
     }
+    d.commit();
     // gnuplot 5.4 cannot autoscale y for box plots at fixed x: give the range.
     double pad = 0.05 * (hi - lo) + 1e-3;
     std::string range = fmt::format("set yrange [{}:{}]\n", lo - pad, hi + pad);
@@ -172,6 +177,8 @@ void write_plots(const EvalResults& r, const std::vector<EvalSummary>& summaries
         ++finite_break_evens;
       }
     }
+    roof.commit();
+    be.commit();
     write_plot(
         dir, "roofline_" + obj,
         "set title 'Fraction of the best known configuration (" + obj +
@@ -283,6 +290,7 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
                        num(s.nn_break_even_median), num(s.rbf_break_even_median), s.nn_never,
                        s.rbf_never, num(s.nn_native_speedup_median),
                        num(s.rbf_native_speedup_median));
+    f.commit();
   }
   write_plots(r, summaries, dir / "plots");
   bool plotted = run_gnuplot(dir / "plots");
@@ -384,6 +392,7 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
         "above the prediction's (never = the search's converged configuration is not faster "
         "than the prediction). A refused build counts as a frame at the default configuration's "
         "cost. Raw data: cameras.csv, search_frames.csv, predictions.csv, summary.csv.\n";
+  md.commit();
   return report_path.string();
 }
 
