@@ -19,7 +19,9 @@ IndicatorSchema& IndicatorSchema::add(std::string name, double lo, double hi) {
 State IndicatorSchema::make(
     std::initializer_list<std::pair<std::string_view, double>> values) const {
   State state(size(), std::nan(""));
-  for (const auto& [name, value] : values) {
+  for (const auto& [key, value] : values) {
+    // A plain copy for the lambda: clang 14 cannot capture structured bindings.
+    const std::string_view name = key;
     const auto it = std::find_if(entries_.begin(), entries_.end(),
                                  [&](const Entry& e) { return e.name == name; });
     if (it == entries_.end()) {
