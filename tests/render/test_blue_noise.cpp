@@ -127,7 +127,8 @@ TEST(BlueNoise, EmbeddedOriginsUseEveryKeySetOncePerQuadruple) {
       ASSERT_LT(origin, kTilePixels) << "quadruple " << q << ", pixel " << p;
       ++uses[origin];
     }
-    for (int k = 0; k < kTilePixels; ++k) ASSERT_EQ(uses[k], 1) << "quadruple " << q << ", key " << k;
+    for (int k = 0; k < kTilePixels; ++k)
+      ASSERT_EQ(uses[k], 1) << "quadruple " << q << ", key " << k;
   }
 }
 
