@@ -1,9 +1,9 @@
-// tuneray bench render|traversal|build: benchmarks as subcommands (tables on stdout, JSON).
+// tuneray bench render|traversal|build|quality: the options of the benchmarks (their runs:
+// cmd_bench_*.cpp). Bad values fail before any scene loads, in the order the options are checked.
 #include <memory>
+#include <tuple>
 
-#include "app/bench_commands.h"
-#include "app/cmd_bench_accel.h"
-#include "app/cmd_bench_quality.h"
+#include "app/cli_parse.h"
 #include "app/commands.h"
 
 namespace tuneray {
@@ -12,11 +12,13 @@ CommandAction add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks: render, traversal, build, quality");
   bench->require_subcommand(1);
 
-  auto render = std::make_shared<BenchRenderArgs>();
+  // Sizes are parsed when the command runs, so the library takes them typed.
+  auto render = std::make_shared<RenderBenchOptions>();
+  auto render_size = std::make_shared<std::string>("640x360");
   CLI::App* r = bench->add_subcommand(
       "render", "Render speed per scene, and Embree's pathtracer side by side");
   r->add_option("scenes", render->scenes, "Scenes (default: cornell + all shared scenes)");
-  r->add_option("--size", render->size, "Image size")->capture_default_str();
+  r->add_option("--size", *render_size, "Image size")->capture_default_str();
   r->add_option("--spp", render->spp, "Samples per pixel per repeat")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
@@ -30,7 +32,8 @@ CommandAction add_bench_command(CLI::App& app) {
   r->add_option("--scenes-dir", render->scenes_dir, "Folder of the shared scenes");
   r->add_flag("!--no-embree", render->embree_reference, "Skip Embree's reference pathtracer");
 
-  auto accel = std::make_shared<BenchAccelArgs>();
+  auto accel = std::make_shared<AccelBenchOptions>();
+  auto accel_size = std::make_shared<std::string>("320x180");
   auto add_accel_options = [&](CLI::App* c) {
     c->add_option("scenes", accel->scenes, "Scenes (default: every shared scene)");
     c->add_option("--rays", accel->rays, "Rays per ray set")
@@ -54,7 +57,7 @@ CommandAction add_bench_command(CLI::App& app) {
               "shared machine; rates are then per CPU-second)");
   t->add_flag("!--no-render", accel->render,
               "Skip the render-level run (native vs the best configuration, whole frames)");
-  t->add_option("--size", accel->size, "Frame size of the render-level run")->capture_default_str();
+  t->add_option("--size", *accel_size, "Frame size of the render-level run")->capture_default_str();
   t->add_option("--spp", accel->spp, "Samples per pixel of a render-level frame")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
@@ -68,11 +71,12 @@ CommandAction add_bench_command(CLI::App& app) {
       "build", "Build time vs Embree native at the same quality (interleaved), tree shape, memory");
   add_accel_options(b);
 
-  auto quality = std::make_shared<BenchQualityArgs>();
+  auto quality = std::make_shared<QualityBenchOptions>();
+  auto quality_size = std::make_shared<std::string>("640x360");
   CLI::App* q = bench->add_subcommand(
       "quality", "RMSE vs ground truth at a frame budget: ablation of the quality techniques");
   q->add_option("scenes", quality->scenes, "Scenes (default: every scenes/*.json)");
-  q->add_option("--size", quality->size, "Image size")->capture_default_str();
+  q->add_option("--size", *quality_size, "Image size")->capture_default_str();
   q->add_option("--frame-ms", quality->frame_ms, "Frame budget (ms)")
       ->check(CLI::Range(1.0, 1e7))
       ->capture_default_str();
@@ -110,8 +114,7 @@ CommandAction add_bench_command(CLI::App& app) {
       ->check(CLI::Range(0.0f, 1e30f))
       ->capture_default_str();
   std::string names;
-  for (const std::string& n : bench_quality_configurations())
-    names += (names.empty() ? "" : ", ") + n;
+  for (const std::string& n : quality_configurations()) names += (names.empty() ? "" : ", ") + n;
   q->add_option("--only", quality->only, "Run only these configurations: " + names);
   q->add_flag("--sweep", quality->sweep, "Also sweep tile size and wavefront batch size");
   q->add_option("--json", quality->json, "Write results as JSON");
@@ -119,8 +122,18 @@ CommandAction add_bench_command(CLI::App& app) {
   q->add_option("--scenes-dir", quality->scenes_dir, "Folder of the shared scenes");
 
   return [=] {
-    if (q->parsed()) return run_bench_quality(*quality);
-    if (r->parsed()) return run_bench_render(*render);
+    if (q->parsed()) {
+      check_quality_configurations(quality->only);  // before the size, as it always was
+      std::tie(quality->width, quality->height) = parse_size(*quality_size);
+      return run_bench_quality(*quality);
+    }
+    if (r->parsed()) {
+      std::tie(render->width, render->height) = parse_size(*render_size);
+      return run_bench_render(*render);
+    }
+    // A bad size fails now, not after the tables; without the render-level run it is unused.
+    if (t->parsed() && accel->render)
+      std::tie(accel->width, accel->height) = parse_size(*accel_size);
     if (t->parsed()) return run_bench_traversal(*accel);
     if (b->parsed()) return run_bench_build(*accel);
     return 2;

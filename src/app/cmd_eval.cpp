@@ -7,7 +7,7 @@
 
 #include "app/cli_parse.h"
 #include "app/commands.h"
-#include "app/scene_paths.h"
+#include "bench/scene_paths.h"
 #include "tuning/eval_report.h"
 #include "tuning/eval_study.h"
 

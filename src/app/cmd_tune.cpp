@@ -5,14 +5,13 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "app/cli_parse.h"
 #include "app/commands.h"
 #include "app/progress.h"
+#include "bench/tune_summary.h"
 #include "image/atomic_file.h"
-#include "tuning/stats.h"
 #include "tuning/tune_session.h"
 
 namespace tuneray {
@@ -28,46 +27,6 @@ struct TuneArgs {
   std::string json;
   bool quiet = false;
 };
-
-void write_json(const TuneArgs& a, const TuneReport& report) {
-  nlohmann::json cams = nlohmann::json::array();
-  std::vector<double> speedups, vs_native;
-  for (const auto& c : report.cameras) {
-    cams.push_back({{"camera", c.camera},
-                    {"mode", c.mode},
-                    {"frames", c.frames},
-                    {"default_ms", c.default_ms},
-                    {"chosen_ms", c.chosen_ms},
-                    {"native_ms", c.native_ms},
-                    {"speedup", c.speedup()},
-                    {"vs_native", c.vs_native()},
-                    {"accumulated_ms", c.accumulated_ms},
-                    {"backend", c.backend},
-                    {"config", c.config},
-                    {"converged", c.converged}});
-    speedups.push_back(c.speedup());
-    vs_native.push_back(c.vs_native());
-  }
-  const TuneOptions& o = a.options;
-  nlohmann::json j = {
-      {"scene", o.scene},
-      {"objective", a.objective},
-      {"scheduler", a.scheduler},
-      {"native_in_space", o.native_in_space},
-      {"work_sizes", o.work_sizes},
-      {"tuning_key", tuning_key(o)},
-      {"size", a.size},
-      {"spp", o.spp},
-      {"iterations", o.iterations},
-      {"baseline_repeats", o.baseline_repeats},
-      {"cameras", cams},
-      {"failed_builds", report.failed_builds},
-      {"speedup", {{"median", median(speedups)}, {"geomean", geometric_mean(speedups)}}},
-      {"vs_native", {{"median", median(vs_native)}, {"geomean", geometric_mean(vs_native)}}}};
-  ReplacingFile out(a.json);
-  out << j.dump(2) << "\n";
-  out.commit();
-}
 
 int run_tune(TuneArgs& a) {
   a.options.objective = parse_objective(a.objective);
@@ -95,14 +54,7 @@ int run_tune(TuneArgs& a) {
         bar.advance();
       });
   bar.finish();
-  std::vector<double> speedups, vs_native;
-  int searched = 0, tuned = 0;
-  for (const auto& c : report.cameras) {
-    speedups.push_back(c.speedup());
-    vs_native.push_back(c.vs_native());
-    searched += c.mode == "search";
-    tuned += c.backend == "tuned";
-  }
+  TuneSummary sum = summarize_tune(report);
   fmt::print("\n{:>6} {:>8} {:>11} {:>11} {:>11} {:>8} {:>9} {:>14}  {}\n", "camera", "mode",
              "default ms", "native ms", "chosen ms", "speedup", "vs native", "frames total",
              "configuration");
@@ -113,13 +65,17 @@ int run_tune(TuneArgs& a) {
   fmt::print(
       "\nspeedup over the default configuration: median {:.3f}, geometric mean {:.3f}; "
       "{} of {} cameras searched, {} failed builds\n",
-      median(speedups), geometric_mean(speedups), searched, report.cameras.size(),
+      sum.speedup_median, sum.speedup_geomean, sum.searched, report.cameras.size(),
       report.failed_builds);
   fmt::print(
       "speedup over native Embree (medium): median {:.3f}, geometric mean {:.3f}; "
       "tuned BVH chosen at {} of {} cameras\n",
-      median(vs_native), geometric_mean(vs_native), tuned, report.cameras.size());
-  if (!a.json.empty()) write_json(a, report);
+      sum.vs_native_median, sum.vs_native_geomean, sum.tuned, report.cameras.size());
+  if (!a.json.empty()) {
+    write_text_file(
+        a.json,
+        tune_report_json(a.options, a.objective, a.scheduler, a.size, report).dump(2) + "\n");
+  }
   return 0;
 }
 

@@ -5,8 +5,8 @@
 #include <iostream>
 #include <vector>
 
+#include "app/cli_parse.h"
 #include "app/commands.h"
-#include "app/resource_limits.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"tuneray: a CPU path tracer that tunes its own acceleration structure"};

@@ -50,6 +50,12 @@ void replace_file(const std::string& path, const std::function<void(const std::s
   rename_over(temporary, path);
 }
 
+void write_text_file(const std::string& path, const std::string& text) {
+  ReplacingFile f(path);
+  f << text;
+  f.commit();
+}
+
 ReplacingFile::ReplacingFile(std::string path, std::ios::openmode mode)
     : path_(std::move(path)), temporary_(temporary_path_for(path_)) {
   out_.open(temporary_, mode | std::ios::out | std::ios::trunc);

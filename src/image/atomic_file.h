@@ -18,6 +18,9 @@ std::string temporary_path_for(const std::string& path);
 // propagates (std::runtime_error naming `path` for the rename).
 void replace_file(const std::string& path, const std::function<void(const std::string&)>& write);
 
+// replace_file for a whole text at once (reports, JSON).
+void write_text_file(const std::string& path, const std::string& text);
+
 // A text or binary output stream for `path` with the same guarantee: what is written goes to
 // the temporary file; commit() checks the stream, closes it and renames; without a successful
 // commit() (an exception, an early return) the destructor removes the temporary file.

@@ -36,7 +36,7 @@ struct alignas(16) PixelKeys {
 
 class BlueNoiseTables {
  public:
-  // The tables of the committed generator output (blue_noise_tables.cpp), built once.
+  // The tables of the committed generator output (data/blue_noise_keys.u16), built once.
   static const BlueNoiseTables& optimized();
 
   // Tables where pixel p of quadruple q gets the random keys first drawn for pixel
@@ -75,7 +75,8 @@ inline float bits_to_unit_float(uint32_t bits) {
 }
 
 namespace blue_noise {
-// The generator's output: the origin permutation, kQuadruples * kTilePixels entries.
+// The generator's output (data/blue_noise_keys.u16, embedded by the build): the origin
+// permutation, kQuadruples * kTilePixels entries.
 extern const uint16_t kOptimizedOrigin[kQuadruples * kTilePixels];
 }  // namespace blue_noise
 

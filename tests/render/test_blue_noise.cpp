@@ -116,6 +116,22 @@ TEST(BlueNoise, Next4IsFourNext1AndPcgPastTheTables) {
   for (int i = 0; i < 8; ++i) EXPECT_EQ(a.next1(), pcg.next1());
 }
 
+// The embedded data (data/blue_noise_keys.u16) is what the generator promises: per quadruple a
+// permutation of the tile's key sets, so every key set is used exactly once and the samples of
+// the tile as a whole keep the random keys' distribution.
+TEST(BlueNoise, EmbeddedOriginsUseEveryKeySetOncePerQuadruple) {
+  for (int q = 0; q < kQuadruples; ++q) {
+    std::vector<int> uses(kTilePixels, 0);
+    for (int p = 0; p < kTilePixels; ++p) {
+      uint16_t origin = kOptimizedOrigin[q * kTilePixels + p];
+      ASSERT_LT(origin, kTilePixels) << "quadruple " << q << ", pixel " << p;
+      ++uses[origin];
+    }
+    for (int k = 0; k < kTilePixels; ++k)
+      ASSERT_EQ(uses[k], 1) << "quadruple " << q << ", key " << k;
+  }
+}
+
 TEST(BlueNoise, TablesRejectBadOrigins) {
   std::vector<uint16_t> short_table(10);
   EXPECT_THROW(BlueNoiseTables{short_table}, std::invalid_argument);

@@ -1,4 +1,4 @@
-#include "app/scene_paths.h"
+#include "bench/scene_paths.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -1,9 +1,8 @@
-#include "app/ground_truth.h"
+#include "bench/ground_truth.h"
 
 #include <filesystem>
 #include <sstream>
 
-#include "app/progress.h"
 #include "image/io.h"
 #include "render/film.h"
 #include "render/tile_renderer.h"
@@ -44,7 +43,7 @@ RenderSettings ground_truth_settings(const GroundTruthKey& key) {
 }
 
 Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scene& scene,
-                   const Accel& accel, GroundTruthInfo* info, bool progress) {
+                   const Accel& accel, GroundTruthInfo* info, const TruthProgress& progress) {
   GroundTruthInfo local;
   GroundTruthInfo& out = info ? *info : local;
   out = {};
@@ -57,20 +56,15 @@ Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scen
   PcgSampler sampler(settings.seed);
   TileRenderer renderer(scene, accel, key.camera, settings, sampler);
   Film film(key.width, key.height);
-  ProgressBar bar("truth", static_cast<uint64_t>(key.spp), progress && stderr_is_terminal());
   constexpr int kPass = 16;  // spp between error checks
   while (out.spp < key.spp) {
     uint32_t n = static_cast<uint32_t>(std::min(kPass, key.spp - out.spp));
     out.render_ms += renderer.render_pass(film, static_cast<uint32_t>(out.spp), n).render_ms;
     out.spp += static_cast<int>(n);
-    bar.advance(n);
-    if (key.until_rmse > 0) {
-      out.estimated_rmse = film.estimated_rmse();
-      bar.set_suffix("est. RMSE " + std::to_string(out.estimated_rmse));
-      if (out.estimated_rmse < key.until_rmse) break;
-    }
+    if (key.until_rmse > 0) out.estimated_rmse = film.estimated_rmse();
+    if (progress) progress(static_cast<int>(n), key.until_rmse > 0 ? out.estimated_rmse : -1.0);
+    if (key.until_rmse > 0 && out.estimated_rmse < key.until_rmse) break;
   }
-  bar.finish();
   out.estimated_rmse = film.estimated_rmse();
   out.rendered = true;
   Image image = film.resolve();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "accel/accel.h"
@@ -37,9 +38,14 @@ struct GroundTruthInfo {
   double render_ms = 0;
 };
 
-// Reads the cached image, or renders it and writes it. `progress` draws a bar on stderr while
-// rendering (when stderr is a terminal).
+// Called after every pass of a truth render with the samples per pixel it added and, when the key
+// stops on an error target, the running RMSE estimate (else a negative value). The library draws
+// nothing itself: the command line turns this into its progress bar.
+using TruthProgress = std::function<void(int spp_added, double estimated_rmse)>;
+
+// Reads the cached image, or renders it and writes it.
 Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scene& scene,
-                   const Accel& accel, GroundTruthInfo* info = nullptr, bool progress = true);
+                   const Accel& accel, GroundTruthInfo* info = nullptr,
+                   const TruthProgress& progress = {});
 
 }  // namespace tuneray

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "app/equal_time.h"
+#include "bench/equal_time.h"
 
 namespace tuneray {
 namespace {

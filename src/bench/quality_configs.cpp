@@ -1,0 +1,93 @@
+#include "bench/quality_configs.h"
+
+#include <algorithm>
+#include <functional>
+#include <stdexcept>
+#include <vector>
+
+namespace tuneray {
+
+namespace {
+
+struct Config {
+  std::string name;
+  std::function<void(QualitySwitches&, const QualityBenchOptions&)> apply;
+};
+
+void set_clamp(QualityOptions& o, const QualityBenchOptions& a) {
+  o.clamp = a.clamp;
+  o.clamp_relative = a.clamp > 0 ? 0.0f : a.clamp_relative;
+}
+
+void set_unbiased(QualitySwitches& s) {
+  QualityOptions& o = s.quality;
+  o.wavefront = o.sky_rgba = o.branchless_materials = o.adaptive = true;
+  o.sampler = SamplerKind::kBlueNoise;
+  s.one_texel = true;
+}
+
+using S = QualitySwitches;
+using A = QualityBenchOptions;
+
+// The baseline has every switch off (tiles, 12-byte sky texels, textures kept, per-type
+// material evaluation, PCG numbers, uniform sampling); each row switches one technique on;
+// "unbiased" switches on every technique that leaves the expected image alone, "defaults" is
+// QualityOptions{} (what the renderer does unless told otherwise), "all" switches on every one.
+const std::vector<Config>& configurations() {
+  static const std::vector<Config> configs = {
+      {"baseline", [](S&, const A&) {}},
+      {"wavefront", [](S& s, const A&) { s.quality.wavefront = true; }},
+      {"sky-rgba", [](S& s, const A&) { s.quality.sky_rgba = true; }},
+      {"one-texel", [](S& s, const A&) { s.one_texel = true; }},
+      {"branchless", [](S& s, const A&) { s.quality.branchless_materials = true; }},
+      {"bluenoise", [](S& s, const A&) { s.quality.sampler = SamplerKind::kBlueNoise; }},
+      {"adaptive", [](S& s, const A&) { s.quality.adaptive = true; }},
+      {"lowres-sky", [](S& s, const A&) { s.quality.lowres_sky = true; }},
+      {"regularize", [](S& s, const A&) { s.quality.regularize = true; }},
+      {"clamp", [](S& s, const A& a) { set_clamp(s.quality, a); }},
+      {"unbiased", [](S& s, const A&) { set_unbiased(s); }},
+      {"defaults",
+       [](S& s, const A&) {
+         s.quality = QualityOptions{};  // what `render` and RenderSettings{} use
+         s.one_texel = true;
+       }},
+      {"all",
+       [](S& s, const A& a) {
+         set_unbiased(s);
+         s.quality.lowres_sky = s.quality.regularize = true;
+         set_clamp(s.quality, a);
+       }},
+  };
+  return configs;
+}
+
+}  // namespace
+
+std::vector<std::string> quality_configurations() {
+  std::vector<std::string> names;
+  for (const Config& c : configurations()) names.push_back(c.name);
+  return names;
+}
+
+void check_quality_configurations(const std::vector<std::string>& only) {
+  const std::vector<std::string> known = quality_configurations();
+  for (const std::string& name : only)
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw std::invalid_argument("bad --only '" + name + "': expected one of " + list);
+    }
+}
+
+QualitySwitches quality_switches(const std::string& name, const QualityOptions& base,
+                                 const QualityBenchOptions& options) {
+  for (const Config& c : configurations())
+    if (c.name == name) {
+      QualitySwitches s{base, false};
+      c.apply(s, options);
+      return s;
+    }
+  throw std::invalid_argument("unknown quality configuration '" + name + "'");
+}
+
+}  // namespace tuneray

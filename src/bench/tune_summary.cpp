@@ -1,0 +1,57 @@
+#include "bench/tune_summary.h"
+
+#include "tuning/stats.h"
+
+namespace tuneray {
+
+TuneSummary summarize_tune(const TuneReport& report) {
+  std::vector<double> speedups, vs_native;
+  TuneSummary s;
+  for (const auto& c : report.cameras) {
+    speedups.push_back(c.speedup());
+    vs_native.push_back(c.vs_native());
+    s.searched += c.mode == "search";
+    s.tuned += c.backend == "tuned";
+  }
+  s.speedup_median = median(speedups);
+  s.speedup_geomean = geometric_mean(speedups);
+  s.vs_native_median = median(vs_native);
+  s.vs_native_geomean = geometric_mean(vs_native);
+  return s;
+}
+
+nlohmann::json tune_report_json(const TuneOptions& o, const std::string& objective,
+                                const std::string& scheduler, const std::string& size,
+                                const TuneReport& report) {
+  nlohmann::json cams = nlohmann::json::array();
+  for (const auto& c : report.cameras)
+    cams.push_back({{"camera", c.camera},
+                    {"mode", c.mode},
+                    {"frames", c.frames},
+                    {"default_ms", c.default_ms},
+                    {"chosen_ms", c.chosen_ms},
+                    {"native_ms", c.native_ms},
+                    {"speedup", c.speedup()},
+                    {"vs_native", c.vs_native()},
+                    {"accumulated_ms", c.accumulated_ms},
+                    {"backend", c.backend},
+                    {"config", c.config},
+                    {"converged", c.converged}});
+  TuneSummary s = summarize_tune(report);
+  return {{"scene", o.scene},
+          {"objective", objective},
+          {"scheduler", scheduler},
+          {"native_in_space", o.native_in_space},
+          {"work_sizes", o.work_sizes},
+          {"tuning_key", tuning_key(o)},
+          {"size", size},
+          {"spp", o.spp},
+          {"iterations", o.iterations},
+          {"baseline_repeats", o.baseline_repeats},
+          {"cameras", cams},
+          {"failed_builds", report.failed_builds},
+          {"speedup", {{"median", s.speedup_median}, {"geomean", s.speedup_geomean}}},
+          {"vs_native", {{"median", s.vs_native_median}, {"geomean", s.vs_native_geomean}}}};
+}
+
+}  // namespace tuneray

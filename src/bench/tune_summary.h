@@ -1,0 +1,25 @@
+// What `tuneray tune` reports after a session: speedups over the default configuration and over
+// native Embree, summarised across cameras, and the JSON report.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tuning/tune_session.h"
+
+namespace tuneray {
+
+struct TuneSummary {
+  double speedup_median = 0, speedup_geomean = 0;      // over the default configuration
+  double vs_native_median = 0, vs_native_geomean = 0;  // over native Embree
+  int searched = 0;  // cameras where the tuner searched rather than predicted
+  int tuned = 0;     // cameras where the tuned BVH (not native) was chosen
+};
+TuneSummary summarize_tune(const TuneReport& report);
+
+// `objective`, `scheduler` and `size` as given on the command line.
+nlohmann::json tune_report_json(const TuneOptions& options, const std::string& objective,
+                                const std::string& scheduler, const std::string& size,
+                                const TuneReport& report);
+
+}  // namespace tuneray
