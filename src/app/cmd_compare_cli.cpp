@@ -1,8 +1,8 @@
-// Registers `tuneray compare A B [--json]` (the work is in cmd_compare.cpp).
+// Registers `tuneray compare A B [--json]` (the work is in image/compare_command.cpp).
 #include <iostream>
 #include <memory>
 
-#include "app/cmd_compare.h"
+#include "image/compare_command.h"
 #include "app/commands.h"
 
 namespace tuneray {

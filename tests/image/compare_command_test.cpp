@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "app/cmd_compare.h"
+#include "image/compare_command.h"
 #include "common/temp_dir.h"
 #include "image/io.h"
 

@@ -1,4 +1,4 @@
-#include "app/cmd_compare.h"
+#include "image/compare_command.h"
 
 #include <cmath>
 #include <exception>

@@ -1,4 +1,5 @@
-// `tuneray compare A B [--json]`: error metrics of image A against the reference B.
+// The work of `tuneray compare A B [--json]` (app/cmd_compare_cli.cpp registers the command):
+// error metrics of image A against the reference B.
 #pragma once
 
 #include <ostream>
