@@ -19,6 +19,7 @@
 #include "tuner/nearest_neighbour.h"
 #include "tuner/rng.h"
 #include "tuning/bvh_space.h"
+#include "tuning/cost_log.h"
 #include "tuning/eval_metrics.h"
 #include "tuning/stats.h"
 #include "tuning/tuner_state.h"
@@ -40,29 +41,17 @@ std::string scene_key(const std::string& spec) {
 class LiveCosts {
  public:
   LiveCosts(std::string path, std::string prefix)
-      : path_(std::move(path)), prefix_(std::move(prefix)) {
-    std::ifstream in(path_);
-    std::string line;
-    while (std::getline(in, line)) {
-      size_t tab = line.rfind('\t');
-      if (tab == std::string::npos || line.compare(0, prefix_.size(), prefix_) != 0) continue;
-      try {
-        cache_[line.substr(0, tab)] = std::stod(line.substr(tab + 1));
-      } catch (const std::exception&) {  // a torn last line from an interrupted run
-      }
-    }
-  }
+      : log_(std::move(path), prefix), prefix_(prefix) {}
 
   double get(FrameBench& bench, const CameraDesc& camera, int camera_index,
              const AccelChoice& config, int repeats) {
     std::string key = fmt::format("{}\t{}\t{}", prefix_, camera_index, config.to_string());
-    if (auto it = cache_.find(key); it != cache_.end()) return it->second;
+    if (auto known = log_.find(key)) return *known;
     std::vector<double> ms;
     for (int r = 0; r < repeats; ++r)
       ms.push_back(bench.run(config, camera).cost_ms(bench.objective()));
     double m = median(ms);
-    cache_[key] = m;
-    std::ofstream(path_, std::ios::app) << key << '\t' << fmt::format("{:.6f}", m) << '\n';
+    log_.add(key, m);
     return m;
   }
 
@@ -70,14 +59,14 @@ class LiveCosts {
   std::pair<double, std::string> best(int camera_index) const {
     std::string head = fmt::format("{}\t{}\t", prefix_, camera_index);
     std::pair<double, std::string> b{kNever, ""};
-    for (const auto& [key, ms] : cache_)
+    for (const auto& [key, ms] : log_.entries())
       if (key.compare(0, head.size(), head) == 0 && ms < b.first) b = {ms, key.substr(head.size())};
     return b;
   }
 
  private:
-  std::string path_, prefix_;
-  std::map<std::string, double> cache_;
+  CostLog log_;
+  std::string prefix_;
 };
 
 struct SceneData {
