@@ -31,6 +31,13 @@ Folder& folder() {
 
 }  // namespace
 
+std::string one_texel_pfm() {
+  const float texel[3] = {0.5f, 0.25f, 1.0f};
+  std::string pfm = "PF\n1 1\n-1.0\n";
+  pfm.append(reinterpret_cast<const char*>(texel), sizeof texel);
+  return pfm;
+}
+
 void remove_file(const std::string& name) {
   std::error_code ec;
   std::filesystem::remove(folder().path / name, ec);

@@ -12,6 +12,9 @@ namespace tuneray::fuzz {
 
 // Writes `bytes` to `name` in the process's fuzz folder and returns the full path.
 std::string write_file(const std::string& name, std::string_view bytes);
+// A valid 1x1 PFM (a texture or environment map that inputs can name).
+std::string one_texel_pfm();
+
 // Removes `name` from the fuzz folder if it is there.
 void remove_file(const std::string& name);
 

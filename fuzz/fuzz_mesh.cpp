@@ -21,15 +21,8 @@ void check_loaded(const tuneray::Scene& scene) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace tuneray;
-  static const bool prepared = [] {
-    // The texture the seed's MTL names, so texture loading is reached too.
-    const float texel[3] = {0.5f, 0.25f, 1.0f};
-    std::string pfm = "PF\n1 1\n-1.0\n";
-    pfm.append(reinterpret_cast<const char*>(texel), sizeof texel);
-    fuzz::write_file("tex.pfm", pfm);
-    return true;
-  }();
-  (void)prepared;
+  // The texture the seed's MTL names, so texture loading is reached too.
+  static const std::string texture = fuzz::write_file("tex.pfm", fuzz::one_texel_pfm());
   const auto [variant, rest] = fuzz::select(data, size, 4);
   std::string path;
   if (variant == 0) {
