@@ -54,6 +54,8 @@ void check_ply_file(const std::string& path) {
   if (data.rfind("ply", 0) != 0 || header_end == std::string::npos || header_end > (1 << 20))
     fail("header missing 'ply' or 'end_header'");
 
+  // Every header line is one of the PLY keywords with exactly its words: assimp accepts
+  // mangled headers and then leaks or misreads (found by fuzz/fuzz_mesh).
   std::istringstream header(data.substr(0, header_end));
   std::string line, format;
   std::vector<Element> elements;
@@ -61,8 +63,11 @@ void check_ply_file(const std::string& path) {
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
-    if (keyword == "format") {
-      words >> format;
+    if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "ply") {
+    } else if (keyword == "format") {
+      std::string version;
+      if (!(words >> format >> version)) fail("bad format line '" + line + "'");
     } else if (keyword == "element") {
       Element e;
       if (!(words >> e.name >> e.count)) fail("bad element line '" + line + "'");
@@ -82,9 +87,13 @@ void check_ply_file(const std::string& path) {
         p.size = type_size(type);
         if (p.size == 0) fail("unknown property type '" + type + "'");
       }
-      words >> p.name;
+      if (!(words >> p.name)) fail("property without a name: '" + line + "'");
       elements.back().properties.push_back(p);
+    } else {
+      fail("unknown header line '" + line + "'");
     }
+    std::string extra;
+    if (words >> extra) fail("unexpected '" + extra + "' in header line '" + line + "'");
   }
   if (format == "ascii") return;  // assimp reports or tolerates short ASCII bodies itself
   if (format != "binary_little_endian" && format != "binary_big_endian")

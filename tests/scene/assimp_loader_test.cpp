@@ -65,6 +65,30 @@ TEST(AssimpLoader, TruncatedOrOutOfRangeBinaryPlyIsAnErrorNotACrash) {
               HasSubstr("out of range"));
 }
 
+// Found by fuzz/fuzz_mesh: assimp read this ASCII header and leaked.
+TEST(AssimpLoader, MangledPlyHeaderLinesAreRefused) {
+  testing::SceneFiles files;
+  using ::testing::HasSubstr;
+  const std::string tail =
+      "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_THAT(
+      testing::load_error(
+          files.write("extra.ply", "ply\nformat ascii 1.0\nelement vertex 3 junk\n" + tail)),
+      HasSubstr(
+          "extra.ply: malformed PLY: unexpected 'junk' in header line 'element vertex 3 junk'"));
+  EXPECT_THAT(testing::load_error(
+                  files.write("keyword.ply", "ply\nformat ascii 1.0\nelemnt vertex 3\n" + tail)),
+              HasSubstr("keyword.ply: malformed PLY: unknown header line 'elemnt vertex 3'"));
+  // Comments, obj_info and CRLF line ends are fine.
+  Scene s =
+      load_scene(files.write("ok.ply",
+                             "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info x\r\n"
+                             "element vertex 3\r\n" +
+                                 tail));
+  EXPECT_EQ(s.triangles.size(), 1u);
+}
+
 TEST(AssimpLoader, GltfTriangleWithEmission) {
   testing::SceneFiles files;
   // One triangle; positions as base64 little-endian floats (0,0,0) (1,0,0) (0,1,0).
