@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "scene/gltf_check.h"
 #include "scene/loaders.h"
 #include "scene/ply_check.h"
 #include "scene/texture_cache.h"
@@ -94,7 +95,9 @@ void append_mesh(const aiMesh& mesh, const std::string& file, Scene& scene, bool
 
 Scene load_with_assimp(const std::string& path) {
   if (!fs::is_regular_file(path)) throw SceneError(path + ": cannot open file");
-  if (mesh_format(path) == "ply") check_ply_file(path);
+  const std::string format = mesh_format(path);
+  if (format == "ply") check_ply_file(path);
+  if (format == "gltf" || format == "glb") check_gltf_file(path);
   Assimp::Importer importer;
   const aiScene* in = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |

@@ -89,6 +89,37 @@ TEST(AssimpLoader, MangledPlyHeaderLinesAreRefused) {
   EXPECT_EQ(s.triangles.size(), 1u);
 }
 
+// Found by fuzz/fuzz_mesh: assimp leaked on short or mangled ASCII bodies.
+TEST(AssimpLoader, ShortOrMangledAsciiPlyBodiesAreRefused) {
+  testing::SceneFiles files;
+  using ::testing::HasSubstr;
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  EXPECT_THAT(testing::load_error(files.write("short.ply", header + "0 0 0\n1 0 0\n0 1\n")),
+              HasSubstr("short.ply: malformed PLY: file ends inside element 'vertex' 2"));
+  EXPECT_THAT(
+      testing::load_error(files.write("mangled.ply", header + "0 0 0\n1 0 0\n0 1 0\n3$0 1 2\n")),
+      HasSubstr("mangled.ply: malformed PLY: '3$0' is not a number (element 'face' 0)"));
+  EXPECT_THAT(
+      testing::load_error(files.write("range.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n")),
+      HasSubstr("range.ply: malformed PLY: face 0 has a vertex index out of range"));
+}
+
+// Found by fuzz/fuzz_mesh: assimp leaked on GLB containers with wrong lengths.
+TEST(AssimpLoader, MalformedGlbAndGltfAreRefused) {
+  testing::SceneFiles files;
+  using ::testing::HasSubstr;
+  std::string glb("glTF\x02\x00\x00\x00\xff\x00\x00\x00", 12);
+  glb += std::string("\x04\x00\x00\x00JSON{}  ", 12);
+  EXPECT_THAT(testing::load_error(files.write("len.glb", glb)),
+              HasSubstr("len.glb: malformed glTF: GLB header says 255 bytes, the file has 24"));
+  EXPECT_THAT(testing::load_error(files.write("text.gltf", "{\"asset\": ")),
+              HasSubstr("text.gltf: malformed glTF: the JSON does not parse"));
+  EXPECT_THAT(testing::load_error(files.write("array.gltf", "[1, 2]")),
+              HasSubstr("array.gltf: malformed glTF: the JSON is not an object"));
+}
+
 TEST(AssimpLoader, GltfTriangleWithEmission) {
   testing::SceneFiles files;
   // One triangle; positions as base64 little-endian floats (0,0,0) (1,0,0) (0,1,0).
