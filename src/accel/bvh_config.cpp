@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "accel/factory.h"
@@ -53,9 +55,14 @@ void check_range(const char* key, int value, int lo, int hi) {
            std::to_string(lo) + ".." + std::to_string(hi));
 }
 
+// The shortest %g text that reads back as the same float: "1" for 1, but all the digits of
+// 1.000002 (six significant digits alone printed it as "1": found by fuzz/fuzz_config_text).
 std::string format_float(float f) {
   char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%g", static_cast<double>(f));
+  for (int digits = 6; digits <= 9; ++digits) {
+    std::snprintf(buffer, sizeof(buffer), "%.*g", digits, static_cast<double>(f));
+    if (std::strtof(buffer, nullptr) == f) break;
+  }
   return buffer;
 }
 }  // namespace
