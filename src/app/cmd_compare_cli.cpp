@@ -2,8 +2,8 @@
 #include <iostream>
 #include <memory>
 
-#include "image/compare_command.h"
 #include "app/commands.h"
+#include "image/compare_command.h"
 
 namespace tuneray {
 

@@ -12,6 +12,9 @@ namespace tuneray {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The hidden temporary name the content of `path` is written to first.
 std::string temporary_path_for(const std::string& path) {
   static std::atomic<unsigned> counter{0};
   const fs::path p(path);
@@ -24,8 +27,6 @@ std::string temporary_path_for(const std::string& path) {
   name += std::to_string(counter++);
   return (p.parent_path() / name).string();
 }
-
-namespace {
 
 void rename_over(const std::string& from, const std::string& to) {
   std::error_code ec;

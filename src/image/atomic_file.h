@@ -10,9 +10,6 @@
 
 namespace tuneray {
 
-// The hidden temporary name the content of `path` is written to first.
-std::string temporary_path_for(const std::string& path);
-
 // Calls write(temporary path), then renames the temporary file over `path`. If `write` throws
 // or the rename fails, the temporary file is removed, `path` is untouched and the error
 // propagates (std::runtime_error naming `path` for the rename).

@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "image/compare_command.h"
 #include "common/temp_dir.h"
+#include "image/compare_command.h"
 #include "image/io.h"
 
 namespace tuneray {
