@@ -1,4 +1,4 @@
-// tuneray bench render|traversal|build|quality: the options of the benchmarks (their runs:
+// tuneray bench render|peers|traversal|build|quality: the options of the benchmarks (their runs:
 // cmd_bench_*.cpp). Bad values fail before any scene loads, in the order the options are checked.
 #include <memory>
 #include <tuple>
@@ -9,7 +9,8 @@
 namespace tuneray {
 
 CommandAction add_bench_command(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: render, traversal, build, quality");
+  CLI::App* bench =
+      app.add_subcommand("bench", "Benchmarks: render, peers, traversal, build, quality");
   bench->require_subcommand(1);
 
   // Sizes are parsed when the command runs, so the library takes them typed.
@@ -121,11 +122,46 @@ CommandAction add_bench_command(CLI::App& app) {
   q->add_option("--plot", quality->plot, "Write PREFIX.dat and PREFIX.gp (gnuplot, RMSE vs time)");
   q->add_option("--scenes-dir", quality->scenes_dir, "Folder of the shared scenes");
 
+  auto peers = std::make_shared<PeersBenchOptions>();
+  auto peers_size = std::make_shared<std::string>("320x240");
+  auto peers_json = std::make_shared<std::string>();
+  CLI::App* p = bench->add_subcommand(
+      "peers", "Error at equal time against Embree's pathtracer on its Cornell box");
+  p->add_option("--size", *peers_size, "Image size")->capture_default_str();
+  p->add_option("--max-bounces", peers->peer.max_path_length,
+                "Path length (the pathtracer's --max-path-length)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  p->add_option("--times", peers->times_s, "Render times in seconds to compare at")
+      ->check(CLI::Range(1e-3, 1e4))
+      ->capture_default_str();
+  p->add_option("--reference-spp", peers->reference_spp,
+                "Samples per pixel of both references (cached)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  p->add_option("--repeats", peers->repeats, "Interleaved timing repeats (medians reported)")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  p->add_option("--frame-ms", peers->frame_ms, "Our frame budget")
+      ->check(CLI::Range(0.1, 1e6))
+      ->capture_default_str();
+  p->add_option("--accel", peers->accel, "Our acceleration structure backend")
+      ->capture_default_str();
+  p->add_option("--truth-dir", peers->truth_dir, "Cache of both references")->capture_default_str();
+  p->add_option("--pathtracer", peers->peer.binary, "Embree's pathtracer")->capture_default_str();
+  p->add_option("--ecs", peers->peer.scene, "Embree's scene (.ecs, its .obj beside it)")
+      ->capture_default_str();
+  p->add_option("--json", *peers_json, "Write results as JSON");
+
   return [=] {
     if (q->parsed()) {
       check_quality_configurations(quality->only);  // before the size, as it always was
       std::tie(quality->width, quality->height) = parse_size(*quality_size);
       return run_bench_quality(*quality);
+    }
+    if (p->parsed()) {
+      std::tie(peers->peer.width, peers->peer.height) = parse_size(*peers_size);
+      return run_bench_peers(*peers, *peers_json);
     }
     if (r->parsed()) {
       std::tie(render->width, render->height) = parse_size(*render_size);

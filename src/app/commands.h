@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "bench/accel_bench.h"
+#include "bench/peers_bench.h"
 #include "bench/quality_bench.h"
 #include "bench/render_bench.h"
 
@@ -23,6 +24,7 @@ CommandAction add_compare_command(CLI::App& app);
 
 // The `bench` subcommands' runs (cmd_bench_*.cpp): the bench library's benchmark, printed.
 int run_bench_render(const RenderBenchOptions& options);
+int run_bench_peers(const PeersBenchOptions& options, const std::string& json);
 int run_bench_quality(const QualityBenchOptions& options);
 int run_bench_traversal(const AccelBenchOptions& options);
 int run_bench_build(const AccelBenchOptions& options);

@@ -1,0 +1,84 @@
+// tuneray bench peers: bench/peers_bench.h's equal-time comparison as a table, and as JSON when
+// asked.
+#include <fmt/core.h>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "image/atomic_file.h"
+
+namespace tuneray {
+
+namespace {
+
+void print_result(const PeersBenchOptions& o, const PeersResult& r) {
+  fmt::print("\nEmbree's pathtracer frames (median of {} interleaved repeats):\n", o.repeats);
+  fmt::print("  {:>6} {:>10} {:>9}\n", "spp", "frame ms", "RMSE");
+  for (const PeerPoint& p : r.embree)
+    fmt::print("  {:>6} {:>10.1f} {:>9.5f}\n", p.spp, p.frame_ms, p.rmse);
+  fmt::print("tuneray ({} accel, default quality switches): {:.2f} ms per spp\n\n", o.accel,
+             r.ours_ms_per_spp);
+  fmt::print("{:>7} {:>11} {:>11} {:>11} {:>9} {:>11} {:>12}\n", "time s", "embree RMSE", "tuneray",
+             "tuneray 8b", "spp", "ratio raw", "ratio 8-bit");
+  for (const PeersRow& row : r.rows)
+    fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.5f} {:>9.1f} {:>11.3f} {:>12.3f}\n", row.time_s,
+               row.embree_rmse, row.ours_rmse, row.ours_rmse_ldr, row.ours_spp, row.ratio(),
+               row.ratio_ldr());
+  fmt::print(
+      "ratio = tuneray RMSE / pathtracer RMSE at equal render time (< 1: tuneray is better).\n"
+      "8-bit: tuneray's image and reference through the pathtracer's output transform (clamp to\n"
+      "[0,1], floor(255.01 x)/255), as the pathtracer's own numbers are.\n");
+}
+
+nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
+  nlohmann::json j = {{"size", std::to_string(o.peer.width) + "x" + std::to_string(o.peer.height)},
+                      {"max_path_length", o.peer.max_path_length},
+                      {"reference_spp", o.reference_spp},
+                      {"repeats", o.repeats},
+                      {"frame_ms", o.frame_ms},
+                      {"accel", o.accel},
+                      {"skipped", r.skipped}};
+  if (r.skipped) {
+    j["reason"] = r.reason;
+    return j;
+  }
+  j["embree_reference"] = r.embree_reference;
+  j["tuneray_reference"] = r.ours_reference;
+  j["tuneray_ms_per_spp"] = r.ours_ms_per_spp;
+  j["embree_frames"] = nlohmann::json::array();
+  for (const PeerPoint& p : r.embree)
+    j["embree_frames"].push_back({{"spp", p.spp}, {"frame_ms", p.frame_ms}, {"rmse", p.rmse}});
+  j["rows"] = nlohmann::json::array();
+  for (const PeersRow& row : r.rows)
+    j["rows"].push_back({{"time_s", row.time_s},
+                         {"embree_rmse", row.embree_rmse},
+                         {"tuneray_rmse", row.ours_rmse},
+                         {"tuneray_rmse_8bit", row.ours_rmse_ldr},
+                         {"tuneray_spp", row.ours_spp},
+                         {"ratio", row.ratio()},
+                         {"ratio_8bit", row.ratio_ldr()}});
+  return j;
+}
+
+}  // namespace
+
+int run_bench_peers(const PeersBenchOptions& options, const std::string& json) {
+  check_peers_options(options);
+  fmt::print("Equal-time error against Embree's pathtracer: {}x{}, path length {}\n",
+             options.peer.width, options.peer.height, options.peer.max_path_length);
+  PeersResult r = run_peers_bench(options, [](const std::string& line) {
+    fmt::print("  {}\n", line);
+    std::fflush(stdout);
+  });
+  if (r.skipped)
+    fmt::print("skipped: {}\n", r.reason);
+  else
+    print_result(options, r);
+  if (!json.empty()) {
+    write_text_file(json, to_json(options, r).dump(2) + "\n");
+    fmt::print("wrote {}\n", json);
+  }
+  return 0;
+}
+
+}  // namespace tuneray

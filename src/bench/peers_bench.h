@@ -1,0 +1,63 @@
+// `tuneray bench peers`: error at equal time against Embree's tutorial path tracer. Both
+// programs render Embree's Cornell box at the same size and path length, each against its own
+// cached converged reference; the pathtracer's frames are timed with its --benchmark mode, ours
+// are frame-budget frames of the default renderer. RMSE is compared at fixed render times.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bench/embree_peer.h"
+
+namespace tuneray {
+
+struct PeersBenchOptions {
+  EmbreePeer peer;  // binary, scene, size and path length
+  std::vector<double> times_s = {0.25, 0.5, 1, 2};
+  int reference_spp = 4096;             // both references
+  int repeats = 3;                      // timing repeats, interleaved; medians reported
+  int timing_frames = 2;                // pathtracer frames per --benchmark run
+  double frame_ms = 50;                 // our frame budget
+  std::string accel = "native";         // our backend (the render command's default)
+  std::string truth_dir = "out/truth";  // cache of both references
+};
+
+// Throws std::invalid_argument naming the first option out of range.
+void check_peers_options(const PeersBenchOptions& options);
+
+// The pathtracer's points: samples per pixel of a frame, its render time, its RMSE.
+struct PeerPoint {
+  int spp = 0;
+  double frame_ms = 0;  // median over repeats
+  double rmse = 0;      // of its 8-bit output against its own reference
+};
+
+struct PeersRow {
+  double time_s = 0;
+  double embree_rmse = 0;
+  double ours_rmse = 0;      // our linear image against our linear reference
+  double ours_rmse_ldr = 0;  // both passed through the pathtracer's output transform
+  double ours_spp = 0;       // samples per pixel we had at that time (median)
+  double ratio() const { return ours_rmse / embree_rmse; }
+  double ratio_ldr() const { return ours_rmse_ldr / embree_rmse; }
+};
+
+struct PeersResult {
+  bool skipped = false;
+  std::string reason;                            // why it was skipped
+  std::string embree_reference, ours_reference;  // cache files
+  std::vector<PeerPoint> embree;
+  double ours_ms_per_spp = 0;  // median over repeats, over the whole run
+  std::vector<PeersRow> rows;
+};
+
+// Progress lines for long steps (references, repeats); the library prints nothing itself.
+using PeersProgress = std::function<void(const std::string&)>;
+
+PeersResult run_peers_bench(const PeersBenchOptions& options, const PeersProgress& progress = {});
+
+// Where the pathtracer's reference is cached for these options.
+std::string embree_reference_path(const PeersBenchOptions& options);
+
+}  // namespace tuneray
