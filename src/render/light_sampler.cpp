@@ -19,10 +19,11 @@ LightSampler::LightSampler(const Scene& scene, const EnvironmentLight& environme
     if (!m.is_emissive()) continue;
     const Triangle& t = scene.triangles[i];
     Vec3f p0 = scene.positions[t.v[0]], p1 = scene.positions[t.v[1]], p2 = scene.positions[t.v[2]];
-    float area = 0.5f * length(cross(p1 - p0, p2 - p0));
+    Vec3f ng = cross(p1 - p0, p2 - p0);
+    float area = 0.5f * length(ng);
     if (!(area > 0)) continue;
     emissive_index_of_prim_[i] = static_cast<int32_t>(emissive_.size());
-    emissive_.push_back({i, area});
+    emissive_.push_back({i, area, p0, p1 - p0, p2 - p0, ng / (2.0f * area)});
     float sides = m.two_sided_emission ? 2.0f : 1.0f;
     weights.push_back(luminance(material_emission(scene, i)) * area * kPi * sides);
   }
@@ -67,11 +68,9 @@ LightSample LightSampler::sample(Vec3f p, float u_select, Vec2f u) const {
     return ls;
   }
   const EmissiveTriangle& et = emissive_[index];
-  const Triangle& t = scene_.triangles[et.prim];
-  Vec3f p0 = scene_.positions[t.v[0]], p1 = scene_.positions[t.v[1]], p2 = scene_.positions[t.v[2]];
   Vec2f b = sample_uniform_triangle(u);
-  Vec3f q = p0 * (1 - b.x - b.y) + p1 * b.x + p2 * b.y;
-  Vec3f n = normalize(cross(p1 - p0, p2 - p0));
+  Vec3f q = et.p0 + et.edge1 * b.x + et.edge2 * b.y;
+  const Vec3f& n = et.normal;
   Vec3f d = q - p;
   float dist2 = dot(d, d);
   if (!(dist2 > 0)) return ls;

@@ -47,10 +47,4 @@ BsdfParams resolve_bsdf(const Scene& scene, const SurfaceInteraction& si) {
   return p;
 }
 
-Vec3f offset_ray_origin(Vec3f p, Vec3f n, Vec3f dir) {
-  float magnitude = max_component(Vec3f(std::abs(p.x), std::abs(p.y), std::abs(p.z)));
-  float eps = 1e-4f * std::max(1.0f, magnitude) * 0.05f;
-  return p + n * (dot(n, dir) >= 0 ? eps : -eps);
-}
-
 }  // namespace tuneray

