@@ -126,12 +126,15 @@ class EvalKill : public testing::CommandTest {
   // One uninterrupted run, then `trials` runs each killed 1 to 3 times after random delays
   // (seeded, uniform over the uninterrupted run's duration) and resumed until one finishes.
   void check_kills(int trials, uint64_t seed) {
-    // One folder for every run: report.md quotes the command, --out included.
+    // One folder for every run: report.md quotes the command, --out included. More cameras and
+    // frames than the profile's put most of the run (and of the kills) in the study proper
+    // rather than in gnuplot.
     const fs::path out = path("eval");
     const std::string log = path("log.txt");
-    const std::vector<std::string> args = {"eval",        "--profile", "quick", "--synthetic-costs",
-                                           "--objective", "render",    "--out", out.string(),
-                                           "--quiet"};
+    const std::vector<std::string> args = {
+        "eval",   "--profile",  "quick",  "--synthetic-costs", "--objective",
+        "render", "--cameras",  "10",     "--iterations",      "24",
+        "--out",  out.string(), "--quiet"};
     const Outcome whole = run_killed_after(args, Seconds(600), log);
     ASSERT_FALSE(whole.signaled) << read_all(log);
     ASSERT_EQ(whole.exit_code, 0) << read_all(log);
@@ -143,7 +146,7 @@ class EvalKill : public testing::CommandTest {
 
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> moment(0.0, whole.elapsed.count());
-    int matched = 0, kills = 0;
+    int matched = 0, kills = 0, kills_in_study = 0;
     for (int trial = 0; trial < trials; ++trial) {
       remove_folder(out);
       const int planned_kills = 1 + static_cast<int>(rng() % 3);
@@ -154,6 +157,7 @@ class EvalKill : public testing::CommandTest {
         const Outcome o = run_killed_after(args, delay, log);
         if (o.killed) {
           ++kills;
+          if (!fs::exists(out / "cameras.csv")) ++kills_in_study;
           history += " killed at " + std::to_string(o.elapsed.count()) + " s;";
           continue;
         }
@@ -168,11 +172,13 @@ class EvalKill : public testing::CommandTest {
       matched += diff.empty() ? 1 : 0;
     }
     std::cout << "eval killed and resumed: " << matched << "/" << trials
-              << " final reports identical to the uninterrupted run's (" << kills
-              << " kills; uninterrupted run " << whole.elapsed.count() << " s)\n";
+              << " final reports identical to the uninterrupted run's (" << kills << " kills, "
+              << kills_in_study << " of them during the study, before any report file; "
+              << "uninterrupted run " << whole.elapsed.count() << " s)\n";
     EXPECT_EQ(matched, trials);
-    // Most planned kills land before the run ends (each delay is below its duration).
-    EXPECT_GE(kills, trials);
+    // Planned kills land before the run ends (each delay is below its duration) unless the
+    // machine happens to run much faster than during the uninterrupted run.
+    EXPECT_GE(kills, trials / 2);
   }
 };
 
