@@ -1,11 +1,14 @@
 #include "tuning/eval_report.h"
 
 #include <fmt/core.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -87,6 +90,23 @@ void write_plot(const fs::path& dir, const std::string& stem, const std::string&
       << "set output outfile\n"
       << body;
     f.commit();
+  }
+}
+
+// Temporary files of writes that a kill interrupted (image/atomic_file.h and run_gnuplot name
+// them ".NAME.partial-PID..."): removed once their process is gone, so kills leave no litter.
+// A live process's temporary is left alone: it may still be renamed into place.
+void remove_stale_temporaries(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const size_t mark = name.find(".partial-");
+    if (name[0] != '.' || mark == std::string::npos) continue;
+    const long pid = std::strtol(name.c_str() + mark + std::strlen(".partial-"), nullptr, 10);
+    if (pid <= 0 || pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM)
+      continue;
+    std::error_code ignored;  // another run may have removed it first
+    fs::remove(entry.path(), ignored);
   }
 }
 
@@ -290,6 +310,8 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
                               const std::string& command_line) {
   fs::path dir(out_dir);
   fs::create_directories(dir / "plots");
+  remove_stale_temporaries(dir);
+  remove_stale_temporaries(dir / "plots");
   write_csvs(r, dir);
   std::vector<EvalSummary> summaries = summarise(r);
   {

@@ -190,5 +190,24 @@ TEST_F(EvalKill, KilledTwentyTimesAndResumedGivesTheUninterruptedReport) {
   check_kills(20, 2026);
 }
 
+TEST_F(EvalKill, ARunRemovesTheTemporaryFilesOfKilledWritesOnly) {
+  const fs::path out = path("eval");
+  fs::create_directories(out / "plots");
+  // No process has this id (pid_max is at most 2^22): these writers were killed.
+  const fs::path dead_csv = out / ".cameras.csv.partial-999999999-0";
+  const fs::path dead_plot = out / "plots" / ".roofline_render.png.partial-999999999";
+  // This test's own process is alive: its temporary may still be renamed into place.
+  const fs::path live = out / "plots" / (".notes.txt.partial-" + std::to_string(::getpid()));
+  for (const fs::path& p : {dead_csv, dead_plot, live}) std::ofstream(p) << "half a file";
+  const testing::CommandResult r = testing::run_tuneray(
+      {"eval", "--synthetic-costs", "--scenes", "cornell", "--cameras", "2", "--iterations", "2",
+       "--repetitions", "1", "--objective", "render", "--out", out.string(), "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dead_csv));
+  EXPECT_FALSE(fs::exists(dead_plot));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_TRUE(fs::exists(out / "cameras.csv"));
+}
+
 }  // namespace
 }  // namespace tuneray
