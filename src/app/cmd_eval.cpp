@@ -27,6 +27,7 @@ struct EvalArgs {
   std::string objective = "both";
   std::string scheduler = QualityOptions{}.wavefront ? "wavefront" : "tile";
   bool tuned_only = false;
+  bool synthetic_costs = false;
   bool quiet = false;
   std::string command_line;
 };
@@ -54,12 +55,14 @@ int run_eval(const EvalArgs& a) {
   if (p.cameras < 2) throw std::invalid_argument("the study needs at least 2 cameras");
   p.wavefront = a.scheduler == "wavefront";
   p.native_in_space = !a.tuned_only;
+  p.synthetic_costs = a.synthetic_costs;
 
   fmt::print(
       "eval profile {}: {} scene(s), {} cameras x {} frames, {}x{} {} spp, {} repetitions, {} "
-      "scheduler, {} -> {}\n",
+      "scheduler, {}{} -> {}\n",
       p.name, p.scenes.size(), p.cameras, p.iterations, p.width, p.height, p.spp, p.repetitions,
-      a.scheduler, p.native_in_space ? "backend tuned|native + BVH" : "tuned BVH only", a.out);
+      a.scheduler, p.native_in_space ? "backend tuned|native + BVH" : "tuned BVH only",
+      p.synthetic_costs ? ", SYNTHETIC costs" : "", a.out);
   EvalPaths paths{a.out, a.db};
   EvalResults results = run_eval_study(p, paths, [&](const std::string& line) {
     if (!a.quiet) std::cout << line << std::endl;
@@ -96,6 +99,10 @@ CommandAction add_eval_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--tuned-only", a->tuned_only,
                 "Search the tuned BVH's parameters only, without native Embree as a choice");
+  cmd->add_flag("--synthetic-costs", a->synthetic_costs,
+                "Testing only: replace every measurement by a deterministic made-up cost of "
+                "(scene, camera, configuration); nothing is rendered and the figures mean nothing, "
+                "but reruns and resumed runs write byte-identical reports");
   cmd->add_flag("--quiet,-q", a->quiet, "No per-camera lines");
   return [a, cmd] {
     a->command_line = "tuneray eval --profile " + a->profile + " --out " + a->out;

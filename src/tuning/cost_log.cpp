@@ -32,10 +32,11 @@ std::optional<double> CostLog::find(const std::string& key) const {
   return std::nullopt;
 }
 
-void CostLog::add(const std::string& key, double ms) {
+double CostLog::add(const std::string& key, double ms) {
   // Kept as it will be read back, so a resumed run sees exactly the values of an uninterrupted one.
   const std::string text = fmt::format("{:.6f}", ms);
-  entries_[key] = std::stod(text);
+  const double kept = std::stod(text);
+  entries_[key] = kept;
   std::ofstream out(path_, std::ios::app | std::ios::binary);
   // The torn line is closed with a mark that keeps it from ever parsing as a value.
   if (torn_tail_) out << " (torn by a kill)\n";
@@ -43,6 +44,7 @@ void CostLog::add(const std::string& key, double ms) {
   out.flush();
   if (!out) throw std::runtime_error("cannot append to " + path_);
   torn_tail_ = false;
+  return kept;
 }
 
 }  // namespace tuneray

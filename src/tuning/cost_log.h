@@ -17,8 +17,10 @@ class CostLog {
   CostLog(std::string path, std::string prefix);
 
   std::optional<double> find(const std::string& key) const;
-  // Records and appends `key TAB ms`; ms is kept with the 6 decimals it is written with.
-  void add(const std::string& key, double ms);
+  // Records and appends `key TAB ms`; ms is kept with the 6 decimals it is written with, and
+  // that kept value is returned: callers must use it, not `ms`, or a run that reads the log back
+  // after a kill sees other bits than the run that wrote it.
+  double add(const std::string& key, double ms);
   // Every known entry, by key.
   const std::map<std::string, double>& entries() const { return entries_; }
 

@@ -25,6 +25,9 @@ struct EvalProfile {
   uint64_t seed = 1;
   bool wavefront = QualityOptions{}.wavefront;  // the scheduler frames are measured on
   bool native_in_space = true;  // native Embree is a choice of the search (make_backend_space)
+  // Every measurement replaced by a deterministic made-up cost (tuning/eval_costs.h): for tests
+  // of resume and reproducibility only, the figures say nothing about the renderer.
+  bool synthetic_costs = false;
 };
 
 // "quick": two small built-in scenes, CI-sized (minutes). "standard": every shared scene,

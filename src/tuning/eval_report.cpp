@@ -1,15 +1,20 @@
 #include "tuning/eval_report.h"
 
 #include <fmt/core.h>
+#include <signal.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <system_error>
 
 #include "image/atomic_file.h"
 #include "tuning/eval_metrics.h"
@@ -72,7 +77,8 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
   preds.commit();
 }
 
-// gnuplot script for one figure, written as both PNG and SVG.
+// gnuplot script for one figure, written as both PNG and SVG. The image goes to `outfile` when
+// the caller defines it (run_gnuplot, which renames it), else straight to its name.
 void write_plot(const fs::path& dir, const std::string& stem, const std::string& body) {
   for (const char* kind : {"png", "svg"}) {
     auto f = open_out(dir / (stem + "." + kind + ".gp"));
@@ -80,19 +86,51 @@ void write_plot(const fs::path& dir, const std::string& stem, const std::string&
       f << "set terminal pngcairo size 900,500 font ',10'\n";
     else
       f << "set terminal svg size 900,500 font 'sans,10'\n";
-    f << "set output '" << stem << "." << kind << "'\n" << body;
+    f << "if (!exists('outfile')) outfile = '" << stem << "." << kind << "'\n"
+      << "set output outfile\n"
+      << body;
     f.commit();
   }
 }
 
+// Temporary files of writes that a kill interrupted (image/atomic_file.h and run_gnuplot name
+// them ".NAME.partial-PID..."): removed once their process is gone, so kills leave no litter.
+// A live process's temporary is left alone: it may still be renamed into place.
+void remove_stale_temporaries(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const size_t mark = name.find(".partial-");
+    if (name[0] != '.' || mark == std::string::npos) continue;
+    const long pid = std::strtol(name.c_str() + mark + std::strlen(".partial-"), nullptr, 10);
+    if (pid <= 0 || pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM)
+      continue;
+    std::error_code ignored;  // another run may have removed it first
+    fs::remove(entry.path(), ignored);
+  }
+}
+
+// Each image is drawn under a temporary name and renamed once gnuplot succeeded, like every
+// file of the report: a kill mid-plot leaves the previous image whole, and a gnuplot orphaned
+// by a kill only ever writes its own temporary file.
 bool run_gnuplot(const fs::path& dir) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
   bool ok = true;
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().extension() == ".gp") {
-      std::string cmd = fmt::format("cd '{}' && gnuplot '{}' 2>/dev/null", dir.string(),
-                                    entry.path().filename().string());
-      ok = std::system(cmd.c_str()) == 0 && ok;
+      const std::string image = entry.path().stem().string();
+      const std::string temporary = fmt::format(".{}.partial-{}", image, ::getpid());
+      std::string cmd = fmt::format("cd '{}' && gnuplot -e \"outfile='{}'\" '{}' 2>/dev/null",
+                                    dir.string(), temporary, entry.path().filename().string());
+      std::error_code ec;
+      if (std::system(cmd.c_str()) == 0)
+        fs::rename(dir / temporary, dir / image, ec);
+      else
+        ec = std::make_error_code(std::errc::io_error);
+      if (ec) {
+        fs::remove(dir / temporary, ec);
+        ok = false;
+      }
     }
   return ok;
 }
@@ -272,6 +310,8 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
                               const std::string& command_line) {
   fs::path dir(out_dir);
   fs::create_directories(dir / "plots");
+  remove_stale_temporaries(dir);
+  remove_stale_temporaries(dir / "plots");
   write_csvs(r, dir);
   std::vector<EvalSummary> summaries = summarise(r);
   {
@@ -300,6 +340,12 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
   auto md = open_out(report_path);
   md << "# BVH autotuning study (profile `" << p.name << "`)\n\n"
      << "Command: `" << command_line << "`\n\n"
+     << (p.synthetic_costs
+             ? "**Synthetic costs** (`--synthetic-costs`): every frame cost below is a made-up "
+               "deterministic function of scene, camera and configuration, not a measurement. "
+               "This report tests the study's machinery (resume, reproducibility) and says "
+               "nothing about the renderer.\n\n"
+             : "")
      << fmt::format(
             "Protocol: {} cameras per scene along its camera path, {} search frames per "
             "camera (each builds the BVH as the objective requires and renders {} spp at "

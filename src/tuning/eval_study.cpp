@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -20,6 +21,7 @@
 #include "tuner/rng.h"
 #include "tuning/bvh_space.h"
 #include "tuning/cost_log.h"
+#include "tuning/eval_costs.h"
 #include "tuning/eval_metrics.h"
 #include "tuning/stats.h"
 #include "tuning/tuner_state.h"
@@ -43,16 +45,14 @@ class LiveCosts {
   LiveCosts(std::string path, std::string prefix)
       : log_(std::move(path), prefix), prefix_(prefix) {}
 
-  double get(FrameBench& bench, const CameraDesc& camera, int camera_index,
+  double get(EvalCostSource& costs, Objective objective, int camera_index,
              const AccelChoice& config, int repeats) {
     std::string key = fmt::format("{}\t{}\t{}", prefix_, camera_index, config.to_string());
     if (auto known = log_.find(key)) return *known;
     std::vector<double> ms;
     for (int r = 0; r < repeats; ++r)
-      ms.push_back(bench.run(config, camera).cost_ms(bench.objective()));
-    double m = median(ms);
-    log_.add(key, m);
-    return m;
+      ms.push_back(costs.frame(config, camera_index).cost_ms(objective));
+    return log_.add(key, median(ms));
   }
 
   // Best (lowest) measured cost and its configuration for one camera.
@@ -106,20 +106,21 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
     for (Objective objective : p.objectives) {
       const std::string obj = to_string(objective);
       // The scheduler is part of the key: costs on tiles and on waves do not compare.
-      const std::string run_key =
-          fmt::format("{}/{}/{}x{}/{}spp/{}b/{}", name, obj, p.width, p.height, p.spp,
-                      p.max_bounces, p.wavefront ? "wavefront" : "tile");
+      // So are synthetic costs: they must never mix with measured ones.
+      const std::string run_key = fmt::format(
+          "{}/{}/{}x{}/{}spp/{}b/{}{}", name, obj, p.width, p.height, p.spp, p.max_bounces,
+          p.wavefront ? "wavefront" : "tile", p.synthetic_costs ? "/synthetic" : "");
       RenderSettings settings;
       settings.width = p.width;
       settings.height = p.height;
       settings.max_bounces = p.max_bounces;
       settings.seed = p.seed;
       settings.quality.wavefront = p.wavefront;
-      FrameBench bench(scene, settings, p.spp, objective);
+      std::unique_ptr<EvalCostSource> costs =
+          p.synthetic_costs ? make_synthetic_costs(name, objective)
+                            : make_measured_costs(scene, settings, p.spp, objective, data.cameras);
       const AccelChoice default_choice = AccelChoice::tuned(BvhConfig{});
       const AccelChoice native_choice = AccelChoice::native();
-      bench.run(native_choice, data.cameras[0]);  // warm-up, not counted
-      bench.run(default_choice, data.cameras[0]);
       LiveCosts live((fs::path(paths.out_dir) / "live_costs.tsv").string(), run_key);
 
       // 1. A full search at every camera, each from the default configuration.
@@ -140,7 +141,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         size_t done = tuner.database()->samples(signature).size();
         for (size_t k = done; k < static_cast<size_t>(p.iterations); ++k) {
           tuner::Config c = tuner.suggest(data.states[ci]);
-          FrameCost cost = bench.run(to_accel_choice(c), data.cameras[ci]);
+          FrameCost cost = costs->frame(to_accel_choice(c), static_cast<int>(ci));
           tuner::Extras extras = {{"build_ms", cost.build_ms}, {"render_ms", cost.render_ms}};
           if (cost.ok)
             tuner.report(c, cost.cost_ms(objective) / 1000.0, extras);
@@ -151,9 +152,8 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         r.scene = name;
         r.objective = obj;
         r.camera = static_cast<int>(ci);
-        r.default_ms =
-            live.get(bench, data.cameras[ci], r.camera, default_choice, p.measure_repeats);
-        r.native_ms = live.get(bench, data.cameras[ci], r.camera, native_choice, p.measure_repeats);
+        r.default_ms = live.get(*costs, objective, r.camera, default_choice, p.measure_repeats);
+        r.native_ms = live.get(*costs, objective, r.camera, native_choice, p.measure_repeats);
         for (const tuner::StoredSample& s : tuner.database()->samples(signature)) {
           // A refused build is counted as a frame rendered with the default tree.
           double ms = std::isfinite(s.cost) ? s.cost * 1000.0 : r.default_ms;
@@ -165,8 +165,8 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         data.incumbents[ci] = incumbent;
         if (auto summary = tuner.summary(data.states[ci])) r.converged = summary->converged;
         r.converged_config = to_accel_choice(incumbent).to_string();
-        r.converged_ms = live.get(bench, data.cameras[ci], r.camera, to_accel_choice(incumbent),
-                                  p.measure_repeats);
+        r.converged_ms =
+            live.get(*costs, objective, r.camera, to_accel_choice(incumbent), p.measure_repeats);
         if (log)
           log(fmt::format(
               "{:<14} {:<6} camera {:>3}: search {:3} frames, default {:8.2f} ms, native {:8.2f} "
@@ -223,8 +223,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
             pr.predictor = predictor;
             AccelChoice choice = to_accel_choice(config);
             pr.config = choice.to_string();
-            pr.predicted_ms =
-                live.get(bench, data.cameras[ci], pr.camera, choice, p.measure_repeats);
+            pr.predicted_ms = live.get(*costs, objective, pr.camera, choice, p.measure_repeats);
             predictions.push_back(pr);
           }
         }

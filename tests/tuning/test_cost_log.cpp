@@ -20,8 +20,9 @@ TEST(CostLog, ValuesSurviveAReopenExactly) {
   const std::string path = dir.file("costs.tsv");
   {
     CostLog log(path, "run");
-    log.add("run\t0\ta", 12.3456789);
-    log.add("run\t1\tb", 0.5);
+    // The value returned is the one a reopened log reads, not the one given.
+    EXPECT_EQ(log.add("run\t0\ta", 12.3456789), 12.345679);
+    EXPECT_EQ(log.add("run\t1\tb", 0.5), 0.5);
     EXPECT_EQ(*log.find("run\t0\ta"), 12.345679);  // as written: 6 decimals
   }
   CostLog again(path, "run");
