@@ -28,8 +28,9 @@ CommandAction add_view_command(CLI::App& app) {
   cmd->add_option("scene", o.scene, "Built-in name, mesh file or .json scene")
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Window and image size WIDTHxHEIGHT")->capture_default_str();
-  cmd->add_option("--frame-ms", o.frame_ms,
-                  "Rendering budget per frame in ms (display adds a few ms: 30 gives ~30 fps)")
+  cmd->add_option(
+         "--frame-ms", o.frame_ms,
+         "Rendering budget per frame in ms (display adds ~5 ms at 640x360: 25 gives ~30 fps)")
       ->check(CLI::Range(0.1, 1e6))
       ->capture_default_str();
   cmd->add_option("--accel", o.accel, "Acceleration structure backend")->capture_default_str();
@@ -74,6 +75,10 @@ CommandAction add_view_command(CLI::App& app) {
   return [a] {
     std::tie(a->options.width, a->options.height) = parse_size(a->size);
     a->options.quality = resolve_quality(a->quality);
+    // Uniform sampling unless asked for: adaptive passes' bookkeeping over the whole film
+    // overran a 25 ms budget to ~45 ms per frame at 640x360 (docs/viewer.md), and a viewer
+    // restarts its film at every camera move, before adaptive sampling would pay off.
+    if (!a->quality.adaptive_on) a->options.quality.adaptive = false;
     a->options.tuning.objective = parse_objective(a->objective);
     return run_viewer(a->options);
   };

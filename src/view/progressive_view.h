@@ -17,6 +17,7 @@
 #include "render/sampler.h"
 #include "render/tile_renderer.h"
 #include "scene/scene.h"
+#include "view/display_encoder.h"
 
 namespace tuneray {
 
@@ -65,6 +66,7 @@ class ProgressiveView {
   std::optional<FrameBudgetRenderer> budget_;
   Film film_;
   double film_samples_ = 0;
+  mutable std::optional<DisplayEncoder> encoder_;  // of the last exposure shown
 };
 
 }  // namespace tuneray

@@ -22,8 +22,8 @@ struct ViewerOptions {
   int max_bounces = 3;
   int camera = 0;
   // Frame budget of the rendering (ms); the rest of a frame (display, input) is a few ms, so
-  // 30 ms gives about 30 frames per second.
-  double frame_ms = 30;
+  // 25 ms gives about 30 frames per second at 640x360 (measured under Xvfb, docs/viewer.md).
+  double frame_ms = 25;
   int path = -1;           // camera path to play back; -1 = none
   int path_frames = 240;   // frames the playback takes; it then holds the path's last camera
   int frames = 0;          // > 0: scripted, stop after this many frames
