@@ -82,9 +82,10 @@ const char* sampler_name(SamplerKind kind) {
 // Running totals for the summary line of a scripted run.
 struct FrameTotals {
   int frames = 0;
-  double wall_ms = 0, render_ms = 0, spp = 0;
+  double wall_ms = 0, render_ms = 0, spp = 0, longest_ms = 0;
   void add(double wall, double render, double frame_spp) {
     ++frames;
+    longest_ms = std::max(longest_ms, wall);
     wall_ms += wall;
     render_ms += render;
     spp += frame_spp;
@@ -283,10 +284,10 @@ int run_viewer(const ViewerOptions& o) {
     if (totals.frames > 0) {
       const double mean_ms = totals.wall_ms / totals.frames;
       std::printf(
-          "view      %d frames after the first: %.2f ms per frame (%.1f fps), render %.2f ms, "
-          "%.2f spp per frame; film %.1f spp\n",
-          totals.frames, mean_ms, 1000.0 / mean_ms, totals.render_ms / totals.frames,
-          totals.spp / totals.frames, view.film_spp());
+          "view      %d frames after the first: %.2f ms per frame (%.1f fps), longest %.2f ms, "
+          "render %.2f ms, %.2f spp per frame; film %.1f spp\n",
+          totals.frames, mean_ms, 1000.0 / mean_ms, totals.longest_ms,
+          totals.render_ms / totals.frames, totals.spp / totals.frames, view.film_spp());
     }
     if (tuner)
       std::printf("tuning    %s into %s (key %s), %d failed builds\n",
