@@ -92,6 +92,81 @@ struct FrameTotals {
   }
 };
 
+// What the keys toggle besides the view's own settings.
+struct ViewerControls {
+  bool show_chart = false;
+  int saved = 0;  // images saved so far (their file name's number)
+};
+
+// Acts on one key press; false for quit.
+bool apply_key(int key, const ViewerOptions& o, ProgressiveView& view, ViewerControls& controls) {
+  QualityOptions q = view.settings().quality;
+  switch (key) {
+    case GLFW_KEY_ESCAPE:
+      return false;
+    case GLFW_KEY_G:
+      controls.show_chart = !controls.show_chart;
+      break;
+    case GLFW_KEY_M:
+      q.adaptive = !q.adaptive;
+      view.set_quality(q);
+      break;
+    case GLFW_KEY_B:
+      q.sampler =
+          q.sampler == SamplerKind::kBlueNoise ? SamplerKind::kPcg : SamplerKind::kBlueNoise;
+      view.set_quality(q);
+      break;
+    case GLFW_KEY_N:
+      std::cout << "view: this renderer has no denoiser yet" << std::endl;
+      break;
+    case GLFW_KEY_P:
+    case GLFW_KEY_X: {
+      const std::string path = o.save_prefix + "-" + std::to_string(controls.saved++) +
+                               (key == GLFW_KEY_P ? ".png" : ".exr");
+      WriteOptions write_options;
+      write_options.exposure = o.exposure;
+      // A failed save (a full disk, a folder that does not exist) must not end the session.
+      try {
+        write_image(path, view.image(), write_options);
+        std::cout << "saved     " << path << std::endl;
+      } catch (const std::exception& e) {
+        std::cout << "view: cannot save " << path << ": " << e.what() << std::endl;
+      }
+      break;
+    }
+    case GLFW_KEY_H:
+      std::cout << kHelp << std::endl;
+      break;
+    default:
+      break;
+  }
+  return true;
+}
+
+// The cursor between frames: it turns the view only while the left button stays held.
+struct MouseDrag {
+  double x = 0, y = 0;
+  bool held = false;
+};
+
+FlyInput read_fly_input(GLFWwindow* window, MouseDrag& drag) {
+  FlyInput input;
+  auto held = [&](int key) { return glfwGetKey(window, key) == GLFW_PRESS; };
+  input.move.z = static_cast<float>(held(GLFW_KEY_W) - held(GLFW_KEY_S));
+  input.move.x = static_cast<float>(held(GLFW_KEY_D) - held(GLFW_KEY_A));
+  input.move.y = static_cast<float>(held(GLFW_KEY_E) - held(GLFW_KEY_Q));
+  if (held(GLFW_KEY_LEFT_SHIFT) || held(GLFW_KEY_RIGHT_SHIFT)) input.move *= 4.0f;
+  double x = 0, y = 0;
+  glfwGetCursorPos(window, &x, &y);
+  const bool button = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  if (button && drag.held) {
+    input.turn_right_px = static_cast<float>(x - drag.x);
+    input.turn_up_px = static_cast<float>(drag.y - y);  // screen y grows downwards
+  }
+  drag = {x, y, button};
+  return input;
+}
+
 }  // namespace
 
 bool viewer_available() {
@@ -145,18 +220,18 @@ int run_viewer(const ViewerOptions& o) {
   PathRecorder recorder("recorded");
   recorder.add(start);
   FrameChart chart(240);
-  bool show_chart = o.chart;
+  ViewerControls controls;
+  controls.show_chart = o.chart;
   bool playing = !playback.empty();
-  int saved = 0;
   if (!o.quiet && o.frames == 0) std::cout << kHelp << std::endl;
 
   ViewStatus status;
   status.scene = o.scene;
-  status.accel = std::string(accel->name()) + (o.bvh.empty() ? "" : " " + o.bvh);
+  status.accel = o.tune ? std::string("tuned online")
+                        : std::string(accel->name()) + (o.bvh.empty() ? "" : " " + o.bvh);
   FrameTotals totals;
   double smoothed_ms = 0;
-  double last_cursor_x = 0, last_cursor_y = 0;
-  bool dragging = false;
+  MouseDrag drag;
   Clock::time_point frame_start = Clock::now(), last_title = frame_start;
   double last_frame_ms = o.frame_ms;
 
@@ -164,65 +239,10 @@ int run_viewer(const ViewerOptions& o) {
     window.poll_events();
     if (window.should_close()) break;
     bool quit = false;
-    for (int key : keys.pressed) {
-      QualityOptions q = view.settings().quality;
-      switch (key) {
-        case GLFW_KEY_ESCAPE:
-          quit = true;
-          break;
-        case GLFW_KEY_G:
-          show_chart = !show_chart;
-          break;
-        case GLFW_KEY_M:
-          q.adaptive = !q.adaptive;
-          view.set_quality(q);
-          break;
-        case GLFW_KEY_B:
-          q.sampler =
-              q.sampler == SamplerKind::kBlueNoise ? SamplerKind::kPcg : SamplerKind::kBlueNoise;
-          view.set_quality(q);
-          break;
-        case GLFW_KEY_N:
-          std::cout << "view: this renderer has no denoiser yet" << std::endl;
-          break;
-        case GLFW_KEY_P:
-        case GLFW_KEY_X: {
-          std::string path =
-              o.save_prefix + "-" + std::to_string(saved++) + (key == GLFW_KEY_P ? ".png" : ".exr");
-          WriteOptions write_options;
-          write_options.exposure = o.exposure;
-          write_image(path, view.image(), write_options);
-          std::cout << "saved     " << path << std::endl;
-          break;
-        }
-        case GLFW_KEY_H:
-          std::cout << kHelp << std::endl;
-          break;
-        default:
-          break;
-      }
-    }
+    for (int key : keys.pressed) quit = !apply_key(key, o, view, controls) || quit;
     keys.pressed.clear();
     if (quit) break;
-
-    // Mouse look while the left button is held; any flying input ends a path playback.
-    GLFWwindow* w = window.handle();
-    FlyInput input;
-    auto held = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS; };
-    input.move.z = static_cast<float>(held(GLFW_KEY_W) - held(GLFW_KEY_S));
-    input.move.x = static_cast<float>(held(GLFW_KEY_D) - held(GLFW_KEY_A));
-    input.move.y = static_cast<float>(held(GLFW_KEY_E) - held(GLFW_KEY_Q));
-    if (held(GLFW_KEY_LEFT_SHIFT) || held(GLFW_KEY_RIGHT_SHIFT)) input.move *= 4.0f;
-    double cursor_x = 0, cursor_y = 0;
-    glfwGetCursorPos(w, &cursor_x, &cursor_y);
-    const bool button = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    if (button && dragging) {
-      input.turn_right_px = static_cast<float>(cursor_x - last_cursor_x);
-      input.turn_up_px = static_cast<float>(last_cursor_y - cursor_y);
-    }
-    dragging = button;
-    last_cursor_x = cursor_x;
-    last_cursor_y = cursor_y;
+    const FlyInput input = read_fly_input(window.handle(), drag);
 
     bool moved = false;
     if (playing && frame > 0) {
@@ -250,7 +270,8 @@ int run_viewer(const ViewerOptions& o) {
     const FrameResult result = view.render_frame();
     if (tuner) tuner->report(result);
     window.draw_image(view.display_bytes(o.exposure), o.width, o.height);
-    if (show_chart) window.draw_chart(chart.points(o.frame_ms), chart.budget_y(o.frame_ms));
+    if (controls.show_chart)
+      window.draw_chart(chart.points(o.frame_ms), chart.budget_y(o.frame_ms));
     if (!o.screenshot.empty() && frame + 1 == o.frames) {
       int width = 0, height = 0;
       std::vector<uint8_t> shown = window.read_pixels(width, height);
