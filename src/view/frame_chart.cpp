@@ -4,10 +4,14 @@
 
 namespace tuneray {
 
-void FrameChart::add(double ms) {
+void FrameChart::add(double ms, FrameKind kind) {
   if (capacity_ == 0) return;
-  if (ms_.size() == capacity_) ms_.pop_front();
+  if (ms_.size() == capacity_) {
+    ms_.pop_front();
+    kinds_.pop_front();
+  }
   ms_.push_back(ms);
+  kinds_.push_back(kind);
 }
 
 double FrameChart::scale_ms(double budget_ms) const {
@@ -24,7 +28,8 @@ std::vector<ChartPoint> FrameChart::points(double budget_ms) const {
   const size_t n = ms_.size();
   for (size_t i = 0; i < n; ++i) {
     double x = 1.0 - static_cast<double>(n - 1 - i) * step;
-    out.push_back({static_cast<float>(x), static_cast<float>(std::max(0.0, ms_[i]) / scale)});
+    out.push_back(
+        {static_cast<float>(x), static_cast<float>(std::max(0.0, ms_[i]) / scale), kinds_[i]});
   }
   return out;
 }

@@ -9,16 +9,24 @@
 
 namespace tuneray {
 
+// What a frame did, for its colour: with --tune the chart is the tuning trace, searched
+// frames apart from exploited ones and from the yardsticks.
+enum class FrameKind { kPlain, kSearch, kExploit, kYardstick };
+
 struct ChartPoint {
   float x, y;  // in [0, 1]: x 0 = oldest slot, 1 = newest; y 0 = 0 ms, 1 = the scale's top
+  FrameKind kind;
 };
 
 class FrameChart {
  public:
   explicit FrameChart(size_t capacity) : capacity_(capacity) {}
 
-  void add(double ms);
-  void clear() { ms_.clear(); }
+  void add(double ms, FrameKind kind = FrameKind::kPlain);
+  void clear() {
+    ms_.clear();
+    kinds_.clear();
+  }
   size_t size() const { return ms_.size(); }
 
   // The chart's top in ms: the larger of the slowest frame shown and `budget_ms`, with 20%
@@ -33,6 +41,7 @@ class FrameChart {
  private:
   size_t capacity_;
   std::deque<double> ms_;
+  std::deque<FrameKind> kinds_;
 };
 
 }  // namespace tuneray

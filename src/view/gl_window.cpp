@@ -95,9 +95,22 @@ void GlWindow::draw_chart(const std::vector<ChartPoint>& points, float budget_y)
   glVertex2f(left, y_of(budget_y));
   glVertex2f(right, y_of(budget_y));
   glEnd();
-  glColor3f(0.3f, 1.0f, 0.4f);
   glBegin(GL_LINE_STRIP);
-  for (const ChartPoint& p : points) glVertex2f(x_of(p.x), y_of(p.y));
+  for (const ChartPoint& p : points) {
+    switch (p.kind) {
+      case FrameKind::kPlain:
+      case FrameKind::kExploit:
+        glColor3f(0.3f, 1.0f, 0.4f);  // green
+        break;
+      case FrameKind::kSearch:
+        glColor3f(1.0f, 0.85f, 0.2f);  // yellow
+        break;
+      case FrameKind::kYardstick:
+        glColor3f(0.4f, 0.6f, 1.0f);  // blue
+        break;
+    }
+    glVertex2f(x_of(p.x), y_of(p.y));
+  }
   glEnd();
   glColor3f(1, 1, 1);
 }

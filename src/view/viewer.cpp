@@ -167,6 +167,12 @@ FlyInput read_fly_input(GLFWwindow* window, MouseDrag& drag) {
   return input;
 }
 
+FrameKind frame_kind(const std::string& tuner_mode) {
+  if (tuner_mode == "search") return FrameKind::kSearch;
+  if (tuner_mode == "exploit") return FrameKind::kExploit;
+  return FrameKind::kYardstick;
+}
+
 }  // namespace
 
 bool viewer_available() {
@@ -282,7 +288,7 @@ int run_viewer(const ViewerOptions& o) {
     const Clock::time_point now = Clock::now();
     last_frame_ms = ms_between(frame_start, now);
     frame_start = now;
-    chart.add(last_frame_ms);
+    chart.add(last_frame_ms, tuner ? frame_kind(tuner->status().mode) : FrameKind::kPlain);
     smoothed_ms = smoothed_ms > 0 ? 0.9 * smoothed_ms + 0.1 * last_frame_ms : last_frame_ms;
     // The first frame carries one-time costs (threads, caches): not in the summary.
     if (frame > 0) totals.add(last_frame_ms, result.ms, result.spp);

@@ -9,7 +9,7 @@ namespace {
 TEST(FrameChart, PointsAreRightAlignedOnTheScale) {
   FrameChart chart(5);
   chart.add(10);
-  chart.add(30);
+  chart.add(30, FrameKind::kSearch);
   chart.add(20);
   // The slowest frame (30) is above the budget (25): the scale is 1.2 x 30.
   EXPECT_DOUBLE_EQ(chart.scale_ms(25), 36);
@@ -20,6 +20,8 @@ TEST(FrameChart, PointsAreRightAlignedOnTheScale) {
   EXPECT_FLOAT_EQ(p[2].x, 1.0f);
   EXPECT_FLOAT_EQ(p[0].y, 10.0f / 36);
   EXPECT_FLOAT_EQ(p[1].y, 30.0f / 36);
+  EXPECT_EQ(p[0].kind, FrameKind::kPlain);
+  EXPECT_EQ(p[1].kind, FrameKind::kSearch);
   EXPECT_FLOAT_EQ(chart.budget_y(25), 25.0f / 36);
   // A budget above every frame sets the scale.
   EXPECT_DOUBLE_EQ(chart.scale_ms(50), 60);
@@ -27,12 +29,15 @@ TEST(FrameChart, PointsAreRightAlignedOnTheScale) {
 
 TEST(FrameChart, KeepsOnlyTheNewestFrames) {
   FrameChart chart(3);
-  for (double ms : {1.0, 2.0, 3.0, 4.0, 5.0}) chart.add(ms);
+  for (double ms : {1.0, 2.0, 3.0, 4.0, 5.0})
+    chart.add(ms, ms == 3.0 ? FrameKind::kYardstick : FrameKind::kExploit);
   ASSERT_EQ(chart.size(), 3u);
   std::vector<ChartPoint> p = chart.points(0);
   EXPECT_FLOAT_EQ(p[0].x, 0.0f);
   EXPECT_FLOAT_EQ(p[0].y, 3.0f / 6);
   EXPECT_FLOAT_EQ(p[2].y, 5.0f / 6);
+  EXPECT_EQ(p[0].kind, FrameKind::kYardstick);
+  EXPECT_EQ(p[2].kind, FrameKind::kExploit);
   chart.clear();
   EXPECT_TRUE(chart.points(10).empty());
 }
