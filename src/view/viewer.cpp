@@ -5,8 +5,10 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -51,6 +53,14 @@ constexpr const char* kHelp =
     "      G strip chart, M adaptive sampling, B sampler, N denoiser, P save .png, X save .exr,\n"
     "      H this help, Esc quit";
 
+// The formats image/io.h writes (it reads more).
+bool writable_image(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".png" || ext == ".exr" || ext == ".pfm";
+}
+
 void check_options(const ViewerOptions& o) {
   if (o.width < 1 || o.height < 1) throw std::invalid_argument("view: --size must be positive");
   if (!(o.frame_ms > 0)) throw std::invalid_argument("view: --frame-ms must be positive");
@@ -58,8 +68,8 @@ void check_options(const ViewerOptions& o) {
   if (o.path_frames < 1) throw std::invalid_argument("view: --path-frames must be at least 1");
   if (!o.screenshot.empty() && o.frames == 0)
     throw std::invalid_argument("view: --screenshot needs --frames N (the frame to capture)");
-  if (!o.screenshot.empty() && image_format_from_path(o.screenshot) != ImageFormat::kLdr &&
-      !is_linear_float_format(image_format_from_path(o.screenshot)))
+  // Checked before the window opens, so a typo does not cost the whole run.
+  if (!o.screenshot.empty() && !writable_image(o.screenshot))
     throw std::invalid_argument("view: --screenshot '" + o.screenshot +
                                 "': expected a .png, .exr or .pfm file");
 }

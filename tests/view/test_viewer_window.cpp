@@ -59,10 +59,11 @@ TEST(ViewerWindow, BadOptionsFailBeforeOpeningAWindow) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("--screenshot needs --frames"), std::string::npos) << r.output;
   r = testing::run_program(
-      {testing::tuneray_path(), "view", "cornell", "--frames", "1", "--screenshot", "x.txt"},
+      {testing::tuneray_path(), "view", "cornell", "--frames", "1", "--screenshot", "x.jpg"},
       kNoDisplay);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_EQ(line_count(r.output), 1u) << r.output;
+  EXPECT_NE(r.output.find("x.jpg"), std::string::npos) << r.output;
 }
 
 // Flies path 0 of the Cornell box in 6 frames, holds its last camera for 34 more, and checks
