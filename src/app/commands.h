@@ -21,6 +21,7 @@ CommandAction add_bench_command(CLI::App& app);
 CommandAction add_tune_command(CLI::App& app);
 CommandAction add_eval_command(CLI::App& app);
 CommandAction add_compare_command(CLI::App& app);
+CommandAction add_view_command(CLI::App& app);
 
 // The `bench` subcommands' runs (cmd_bench_*.cpp): the bench library's benchmark, printed.
 int run_bench_render(const RenderBenchOptions& options);

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   add(&tuneray::add_tune_command);
   add(&tuneray::add_eval_command);
   add(&tuneray::add_compare_command);
+  add(&tuneray::add_view_command);
 
   tuneray::refuse_non_finite_numbers(app);
   try {
