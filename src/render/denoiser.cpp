@@ -249,7 +249,9 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, cons
     const float exponent =
         (dr * dr + dg * dg + db * db) * inv_albedo_sigma2 +
         std::abs(clum[x] - qlum[x]) / std::sqrt(cnoise[x] + qnoise[x] + kTinyNoise) * counts[x];
-    const float wq = kernel * wn * qvalid[x] * exp_neg(std::min(exponent, kMaxExponent));
+    // Written so that NaN (inf - inf) also becomes the largest exponent, as in the lanes above.
+    const float bounded = exponent < kMaxExponent ? exponent : kMaxExponent;
+    const float wq = kernel * wn * qvalid[x] * exp_neg(bounded);
     sr[x] += wq * (qr[x] - br[x]);
     sg[x] += wq * (qg[x] - bg[x]);
     sb[x] += wq * (qb[x] - bb[x]);
