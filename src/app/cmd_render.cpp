@@ -11,6 +11,7 @@
 #include "app/progress.h"
 #include "app/render_args.h"
 #include "render/blue_noise_sampler.h"
+#include "render/denoiser_frame.h"
 #include "render/film.h"
 #include "render/frame_budget.h"
 #include "render/resource_limits.h"
@@ -116,7 +117,8 @@ int run_render(const RenderArgs& a) {
   progress.finish();
 
   auto t_out = std::chrono::steady_clock::now();
-  Image image = film.resolve();
+  FrameResolver resolver;
+  Image image = resolver.resolve(renderer, film);
   std::vector<std::string> outputs =
       a.outputs.empty() ? std::vector{default_output(scene)} : a.outputs;
   write_outputs(outputs, image, a.exposure);

@@ -38,6 +38,9 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
                   "(0 = off; the first pass is unclamped)")
       ->check(CLI::Range(0.0f, 1e30f))
       ->capture_default_str();
+  cmd->add_flag("--denoise", o.denoise,
+                "Biased: the written image is filtered by the edge-avoiding denoiser guided by "
+                "first-hit albedo and normal (the film itself stays unbiased)");
   cmd->add_flag("--adaptive", q.adaptive_on,
                 std::string("Adaptive sampling in frame-budget mode: extra samples where the "
                             "error is highest") +

@@ -9,6 +9,7 @@
 #include "bench/quality_configs.h"
 #include "image/metrics.h"
 #include "render/blue_noise_sampler.h"
+#include "render/denoiser_frame.h"
 #include "render/film.h"
 #include "render/frame_budget.h"
 #include "render/tile_renderer.h"
@@ -33,7 +34,7 @@ Image render_fixed(const Scene& scene, const Accel& accel, const CameraDesc& cam
   Film film(settings.width, settings.height);
   renderer.render_pass(film, 0, 1);
   if (spp > 1) renderer.render_pass(film, 1, static_cast<uint32_t>(spp - 1));
-  return film.resolve();
+  return FrameResolver().resolve(renderer, film);
 }
 
 // Median ms per spp of three 2-spp passes, after a 1-spp warm-up pass.
@@ -56,17 +57,20 @@ FrameRun run_frames(const Scene& scene, const Accel& accel, const CameraDesc& ca
   TileRenderer renderer(scene, accel, camera, settings, *sampler);
   Film film(settings.width, settings.height);
   FrameBudgetRenderer budget(renderer, frame_ms);
+  FrameResolver resolver;
   FrameRun run;
   double t = 0, spp = 0;
   PassStats total;
   for (int f = 0; f < frames; ++f) {
     FrameResult frame = budget.render_frame(film);
     total.accumulate(frame.stats);
-    t += frame.ms;
+    Image shown = resolver.resolve(renderer, film);
+    // A denoised frame is ready only once it is filtered: its time counts (equal time).
+    t += frame.ms + (settings.quality.denoise ? resolver.last_ms() : 0.0);
     spp += frame.spp;
     run.time_ms.push_back(t);
     run.spp.push_back(spp);
-    run.rmse.push_back(rmse(film.resolve(), truth));
+    run.rmse.push_back(rmse(shown, truth));
   }
   run.mrays_per_s = total.mrays_per_s();
   return run;

@@ -45,6 +45,7 @@ const std::vector<Config>& configurations() {
       {"lowres-sky", [](S& s, const A&) { s.quality.lowres_sky = true; }},
       {"regularize", [](S& s, const A&) { s.quality.regularize = true; }},
       {"clamp", [](S& s, const A& a) { set_clamp(s.quality, a); }},
+      {"denoise", [](S& s, const A&) { s.quality.denoise = true; }},
       {"unbiased", [](S& s, const A&) { set_unbiased(s); }},
       {"defaults",
        [](S& s, const A&) {
@@ -54,7 +55,7 @@ const std::vector<Config>& configurations() {
       {"all",
        [](S& s, const A& a) {
          set_unbiased(s);
-         s.quality.lowres_sky = s.quality.regularize = true;
+         s.quality.lowres_sky = s.quality.regularize = s.quality.denoise = true;
          set_clamp(s.quality, a);
        }},
   };

@@ -19,7 +19,7 @@ enum class SamplerKind : uint8_t {
 };
 
 // The equal-time quality switches (docs/quality.md). Unbiased ones change speed only; the
-// biased ones (clamp, regularize, lowres_sky) must be off for ground-truth renders. The
+// biased ones (clamp, regularize, lowres_sky, denoise) must be off for ground-truth renders. The
 // defaults are what the ablation in docs/quality.md measured best at equal time (RMSE against
 // a converged truth, nine scenes): the wavefront scheduler, blue-noise samples and adaptive
 // sampling on; the switches without a measurable gain and the biased ones off.
@@ -40,8 +40,13 @@ struct QualityOptions {
   bool profile_phases = false;  // time intersection / shading / shadow (costs a little)
   SamplerKind sampler = SamplerKind::kBlueNoise;  // unbiased either way
   bool branchless_materials = false;  // f and pdf in one straight-line pass (bsdf_evaluate)
+  // Biased: what a frame shows is filtered by the edge-avoiding denoiser (render/denoiser.h);
+  // the film itself keeps accumulating the unbiased estimate.
+  bool denoise = false;
 
-  bool biased() const { return lowres_sky || regularize || clamp > 0 || clamp_relative > 0; }
+  bool biased() const {
+    return lowres_sky || regularize || clamp > 0 || clamp_relative > 0 || denoise;
+  }
 
   // Every technique off: tiles, 12-byte sky texels, per-type materials, PCG numbers, uniform
   // sampling, nothing biased. The plain renderer that ground truths use and that the ablation
@@ -57,7 +62,7 @@ struct QualityOptions {
   // is.
   QualityOptions without_bias() const {
     QualityOptions o = *this;
-    o.lowres_sky = o.regularize = false;
+    o.lowres_sky = o.regularize = o.denoise = false;
     o.clamp = o.clamp_relative = 0;
     return o;
   }

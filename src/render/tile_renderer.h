@@ -70,6 +70,8 @@ class TileRenderer {
 
   int tile_count() const;
   const PathIntegrator& integrator() const { return integrator_; }
+  const Scene& scene() const { return scene_; }
+  const Camera& camera() const { return camera_; }
   const RenderSettings& settings() const { return settings_; }
 
  private:

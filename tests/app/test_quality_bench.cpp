@@ -47,9 +47,9 @@ TEST_F(QualityBench, EveryConfigurationGetsARowPerFrameAndTheTruthIsShared) {
   }
   const std::vector<std::string> expected = {
       "baseline",   "wavefront",  "sky-rgba", "one-texel", "branchless", "bluenoise", "adaptive",
-      "lowres-sky", "regularize", "clamp",    "unbiased",  "defaults",   "all"};
+      "lowres-sky", "regularize", "clamp",    "denoise",   "unbiased",   "defaults",  "all"};
   EXPECT_EQ(names, expected);
-  const std::vector<std::string> biased = {"lowres-sky", "regularize", "clamp", "all"};
+  const std::vector<std::string> biased = {"lowres-sky", "regularize", "clamp", "denoise", "all"};
   for (const auto& c : configs) {
     if (std::find(biased.begin(), biased.end(), c["config"]) == biased.end()) {
       EXPECT_EQ(c["bias"].get<double>(), 0.0) << c["config"];

@@ -1,0 +1,75 @@
+// The denoiser's cost per frame at the benchmark resolution (640x360): the filter alone
+// (every frame) and the feature pass of camera rays (once per film) on the Cornell box.
+// A denoised frame is shown this much later, so it must stay small against a frame budget.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "accel/embree_native.h"
+#include "math/rng.h"
+#include "render/denoiser.h"
+#include "render/denoiser_features.h"
+#include "render/sampler.h"
+#include "scene/builtins.h"
+
+namespace tuneray {
+namespace {
+
+constexpr int kW = 640, kH = 360;
+
+// 4 samples per pixel of exponentially distributed values: heavy-tailed like path samples.
+Film noisy_film() {
+  Film film(kW, kH);
+  Pcg32 rng(3, 7);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      for (int s = 0; s < 4; ++s) {
+        float v = -std::log(1.0f - rng.next_float()) * (1.0f + (x * 7 + y * 3) % 5);
+        film.add(x, y, Color(v), 1, SquareSum::of(Color(v)));
+      }
+  return film;
+}
+
+// Walls of four colours meeting at right angles in a grid of 40-pixel cells.
+DenoiseFeatures grid_features() {
+  DenoiseFeatures f;
+  f.width = kW;
+  f.height = kH;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      int cell = (x / 40 + y / 40) % 4;
+      f.albedo.push_back(Color(0.2f + 0.2f * cell, 0.5f, 0.8f - 0.15f * cell));
+      f.normal.push_back(cell % 2 ? Vec3f(0, 0, 1) : Vec3f(1, 0, 0));
+    }
+  return f;
+}
+
+void BM_DenoiseFilter(benchmark::State& state) {
+  NoisyImage in = noisy_image(noisy_film());
+  DenoiseFeatures f = grid_features();
+  for (auto _ : state) benchmark::DoNotOptimize(denoise(in, f));
+}
+BENCHMARK(BM_DenoiseFilter)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_NoisyImageFromFilm(benchmark::State& state) {
+  Film film = noisy_film();
+  for (auto _ : state) benchmark::DoNotOptimize(noisy_image(film));
+}
+BENCHMARK(BM_NoisyImageFromFilm)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DenoiseFeaturesCornell(benchmark::State& state) {
+  Scene scene = make_cornell_scene();
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  RenderSettings settings;
+  PcgSampler sampler(1);
+  TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, sampler);
+  for (auto _ : state) benchmark::DoNotOptimize(render_denoise_features(renderer));
+}
+BENCHMARK(BM_DenoiseFeaturesCornell)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace tuneray
+
+BENCHMARK_MAIN();

@@ -1,0 +1,45 @@
+// An edge-avoiding à-trous wavelet filter (Dammertz et al., "Edge-Avoiding À-Trous Wavelet
+// Transform for fast Global Illumination Filtering", HPG 2010) with the variance guidance of
+// SVGF (Schied et al., HPG 2017): iterations of a 5x5 B3-spline kernel whose taps spread
+// 1, 2, 4, ... pixels apart, each tap weighted down where the first-hit normal or albedo
+// differs or where the luminance differs by more than the noise explains. The noise level is
+// the pixel's variance of its mean, filtered along with the image. The filter works on the
+// image divided by the albedo (the light arriving at the surface), so textures stay sharp.
+// Biased (it trades noise for blur); QualityOptions::denoise switches it on.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "image/image.h"
+#include "render/denoiser_features.h"
+#include "render/film.h"
+
+namespace tuneray {
+
+struct DenoiseParams {
+  int iterations = 5;         // kernel taps 1, 2, 4, ..., 2^(iterations-1) pixels apart
+  float sigma_luminance = 4;  // luminance difference allowed, in standard deviations
+  int normal_squarings = 7;   // normal weight max(0, n.n')^(2^this): 128 as in SVGF
+  float sigma_albedo = 0.1f;  // RGB distance at which the albedo weight is 1/e
+};
+
+// The normal weight is max(0, n.n')^128, as in SVGF.
+
+// The filter's input: an estimate per pixel and how noisy it is.
+struct NoisyImage {
+  Image color;
+  // Variance of each pixel's estimate (of its mean over samples, r, g and b averaged); < 0:
+  // unknown (under 2 samples), then estimated from the 3x3 neighbourhood's spread.
+  std::vector<float> variance;
+  std::vector<uint8_t> has_estimate;  // 0: no samples yet; the filter fills it from neighbours
+};
+
+// The film's current estimate and its per-pixel variance of the mean.
+NoisyImage noisy_image(const Film& film);
+
+// The filtered image. Throws std::invalid_argument when the sizes disagree.
+Image denoise(const NoisyImage& in, const DenoiseFeatures& features,
+              const DenoiseParams& params = {});
+
+}  // namespace tuneray

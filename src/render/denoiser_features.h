@@ -1,0 +1,35 @@
+// The denoiser's guides: per pixel, the albedo and shading normal of the first surface the
+// camera sees through mirrors. They are noise-free up to antialiasing, so edges in them are
+// edges of the scene, not of the noise. One small pass of camera rays computes them once per
+// film (the camera does not move while a film accumulates), so the path tracer's hot loop
+// and both schedulers stay untouched, and the guides are the same whichever scheduler runs.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "image/image.h"
+#include "render/tile_renderer.h"
+
+namespace tuneray {
+
+struct DenoiseFeatures {
+  int width = 0, height = 0;
+  // Rows of width pixels. Albedo is 1 where the camera sees the sky, a light or glass (the
+  // filter must not divide their radiance by a surface colour); the normal faces the camera
+  // (-direction where it sees the sky, so neighbouring sky pixels agree) and has unit length.
+  std::vector<Color> albedo;
+  std::vector<Vec3f> normal;
+  // 1 where a feature ray saw a light (directly or through mirrors): radiance there is not
+  // the surface's reflected light but an emitter's, often partly covering the pixel. Empty:
+  // none anywhere.
+  std::vector<uint8_t> emitter;
+};
+
+// Camera rays per pixel side for the features (antialiased edges): 2 x 2 stratified.
+inline constexpr int kFeatureRaysPerSide = 2;
+
+// The features of the renderer's scene, camera and resolution.
+DenoiseFeatures render_denoise_features(const TileRenderer& renderer);
+
+}  // namespace tuneray
