@@ -27,8 +27,9 @@ struct AdaptiveOptions {
 // standard deviation s_i has expected squared error s_i^2 / n_i; minimising the sum under a
 // fixed total gives n_i + k_i proportional to s_i (Lagrange), so
 // k_i = clamp(c s_i, 0, cap) - n_i (at least 0) with c found by bisection.
-// Returns per-pixel counts (row-major) summing to <= budget (rounding down loses less than one
-// sample per pixel).
+// Returns per-pixel counts (row-major) summing to <= budget; fractional targets are rounded
+// with the remainder carried along each block of 16 rows, so the total falls short by less
+// than two samples per block and each pixel gets its target rounded up or down.
 std::vector<uint32_t> allocate_adaptive_samples(const Film& film, uint64_t budget,
                                                 const AdaptiveOptions& options = {});
 

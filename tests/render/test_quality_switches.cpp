@@ -324,6 +324,60 @@ TEST(AdaptiveSampling, NoPixelExceedsTheCap) {
   EXPECT_LT(block_share, 0.2);  // 4 x 39 of ~1000
 }
 
+// On a larger film with every pixel's noise different, the allocation is the Lagrange optimum
+// rounded: one constant c with |have_i + k_i - c s_i| < 1 wherever a pixel gets samples, and
+// c s_i < have_i + 1 wherever it gets none; the total is at most the budget and short of it by
+// less than two samples per 16-row block. s_i is recomputed here from the film (unfiltered,
+// with the floor).
+TEST(AdaptiveSampling, AllocationIsTheOptimumForOneConstant) {
+  const int w = 97, h = 61;
+  Film film(w, h);
+  uint32_t state = 12345;
+  auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) * 0x1p-24f;
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      int n = 2 + (x * 7 + y * 3) % 9;
+      float spread = 0.01f + 5.0f * next() * next();
+      for (int k = 0; k < n; ++k) {
+        Color v(1.0f + spread * next());
+        film.add(x, y, v, 1, SquareSum::of(v));
+      }
+    }
+  AdaptiveOptions plain;
+  plain.filter = false;
+  plain.max_ratio = 0;
+  const size_t n_pixels = static_cast<size_t>(w) * h;
+  std::vector<double> sigma(n_pixels);
+  double mean_sigma = 0;
+  for (size_t i = 0; i < n_pixels; ++i) {
+    int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
+    sigma[i] = std::sqrt(film.variance_of_mean(x, y) * film.samples(x, y));
+    mean_sigma += sigma[i] / static_cast<double>(n_pixels);
+  }
+  for (double& s : sigma) s += plain.sigma_floor * mean_sigma;
+  for (uint64_t budget : {uint64_t{50}, uint64_t{5000}, uint64_t{60000}}) {
+    std::vector<uint32_t> extra = allocate_adaptive_samples(film, budget, plain);
+    uint64_t total = 0;
+    double c_low = 0, c_high = 1e300;  // the constants every pixel allows
+    for (size_t i = 0; i < n_pixels; ++i) {
+      total += extra[i];
+      double have = film.samples(static_cast<int>(i % w), static_cast<int>(i / w));
+      if (extra[i] > 0) {
+        c_low = std::max(c_low, (have + extra[i] - 1) / sigma[i]);
+        c_high = std::min(c_high, (have + extra[i] + 1) / sigma[i]);
+      } else {
+        c_high = std::min(c_high, (have + 1) / sigma[i]);
+      }
+    }
+    EXPECT_LE(total, budget);
+    EXPECT_GE(total + 2 * (h + 15) / 16, budget);
+    EXPECT_LE(c_low, c_high * (1 + 1e-9)) << "no single constant explains budget " << budget;
+  }
+}
+
 TEST(AdaptiveSampling, VarianceOfTheMeanMatchesTheSampleFormula) {
   Film film(1, 1);
   const float v[] = {1, 2, 4, 7};
