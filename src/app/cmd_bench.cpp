@@ -151,6 +151,7 @@ CommandAction add_bench_command(CLI::App& app) {
   p->add_option("--pathtracer", peers->peer.binary, "Embree's pathtracer")->capture_default_str();
   p->add_option("--ecs", peers->peer.scene, "Embree's scene (.ecs, its .obj beside it)")
       ->capture_default_str();
+  p->add_flag("!--no-denoise", peers->denoise, "Skip the runs with the denoiser");
   p->add_option("--json", *peers_json, "Write results as JSON");
 
   return [=] {

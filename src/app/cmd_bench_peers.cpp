@@ -18,16 +18,23 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
     fmt::print("  {:>6} {:>10.1f} {:>9.5f}\n", p.spp, p.frame_ms, p.rmse);
   fmt::print("tuneray ({} accel, default quality switches): {:.2f} ms per spp\n\n", o.accel,
              r.ours_ms_per_spp);
-  fmt::print("{:>7} {:>11} {:>11} {:>11} {:>9} {:>11} {:>12}\n", "time s", "embree RMSE", "tuneray",
+  fmt::print("{:>7} {:>11} {:>11} {:>11} {:>9} {:>11} {:>12}", "time s", "embree RMSE", "tuneray",
              "tuneray 8b", "spp", "ratio raw", "ratio 8-bit");
-  for (const PeersRow& row : r.rows)
-    fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.5f} {:>9.1f} {:>11.3f} {:>12.3f}\n", row.time_s,
+  if (o.denoise) fmt::print(" {:>14} {:>15}", "denoised raw", "denoised 8-bit");
+  fmt::print("\n");
+  for (const PeersRow& row : r.rows) {
+    fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.5f} {:>9.1f} {:>11.3f} {:>12.3f}", row.time_s,
                row.embree_rmse, row.ours_rmse, row.ours_rmse_ldr, row.ours_spp, row.ratio(),
                row.ratio_ldr());
+    if (o.denoise)
+      fmt::print(" {:>14.3f} {:>15.3f}", row.denoised_ratio(), row.denoised_ratio_ldr());
+    fmt::print("\n");
+  }
   fmt::print(
       "ratio = tuneray RMSE / pathtracer RMSE at equal render time (< 1: tuneray is better).\n"
       "8-bit: tuneray's image and reference through the pathtracer's output transform (clamp to\n"
-      "[0,1], floor(255.01 x)/255), as the pathtracer's own numbers are.\n");
+      "[0,1], floor(255.01 x)/255), as the pathtracer's own numbers are. Denoised: the same\n"
+      "runs with --denoise, the filtering counted as frame time (ratios to the pathtracer).\n");
 }
 
 nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
@@ -37,6 +44,7 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
                       {"repeats", o.repeats},
                       {"frame_ms", o.frame_ms},
                       {"accel", o.accel},
+                      {"denoise_column", o.denoise},
                       {"skipped", r.skipped}};
   if (r.skipped) {
     j["reason"] = r.reason;
@@ -57,6 +65,14 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
                          {"tuneray_spp", row.ours_spp},
                          {"ratio", row.ratio()},
                          {"ratio_8bit", row.ratio_ldr()}});
+  if (o.denoise)
+    for (size_t i = 0; i < r.rows.size(); ++i) {
+      const PeersRow& row = r.rows[i];
+      j["rows"][i]["denoised_rmse"] = row.denoised_rmse;
+      j["rows"][i]["denoised_rmse_8bit"] = row.denoised_rmse_ldr;
+      j["rows"][i]["denoised_ratio"] = row.denoised_ratio();
+      j["rows"][i]["denoised_ratio_8bit"] = row.denoised_ratio_ldr();
+    }
   return j;
 }
 

@@ -16,6 +16,7 @@
 #include "image/io.h"
 #include "image/metrics.h"
 #include "render/blue_noise_sampler.h"
+#include "render/denoiser_frame.h"
 #include "render/film.h"
 #include "render/frame_budget.h"
 #include "render/tile_renderer.h"
@@ -31,21 +32,23 @@ struct OurRun {
   std::vector<double> time_ms, spp, rmse, rmse_ldr;
 };
 
-// Frame-budget frames of the default renderer until `total_ms` of render time, with the error
-// of the image after every frame: linear, and through the pathtracer's output transform.
+// Frame-budget frames of the renderer until `total_ms`, with the error of the image after every
+// frame: linear, and through the pathtracer's output transform. With the denoiser on, what a
+// frame shows is the filtered film, and the filtering counts as frame time.
 OurRun run_ours(const Scene& scene, const Accel& accel, const RenderSettings& settings,
                 double frame_ms, double total_ms, const Image& truth, const Image& truth_ldr) {
   std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, settings.seed);
   TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, *sampler);
   Film film(settings.width, settings.height);
   FrameBudgetRenderer budget(renderer, frame_ms);
+  FrameResolver resolver;
   OurRun run;
   double t = 0, spp = 0;
   while (t < total_ms) {
     FrameResult frame = budget.render_frame(film);
-    t += frame.ms;
+    Image image = resolver.resolve(renderer, film);
+    t += frame.ms + (settings.quality.denoise ? resolver.last_ms() : 0.0);
     spp += frame.spp;
-    Image image = film.resolve();
     run.time_ms.push_back(t);
     run.spp.push_back(spp);
     run.rmse.push_back(compare_images(image, truth).rmse);
@@ -161,8 +164,9 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
   settings.width = o.peer.width;
   settings.height = o.peer.height;
   settings.max_bounces = o.peer.max_path_length;
-  std::vector<std::vector<double>> ours_rmse(o.times_s.size()), ours_ldr(o.times_s.size()),
-      ours_spp(o.times_s.size());
+  const size_t nt = o.times_s.size();
+  std::vector<std::vector<double>> ours_rmse(nt), ours_ldr(nt), ours_spp(nt), denoised(nt),
+      denoised_ldr(nt);
   std::vector<double> ours_ms_per_spp;
   for (int r = 0; r < o.repeats; ++r) {
     if (r > 0)  // the first repeat's pathtracer timings were taken above
@@ -170,14 +174,25 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
         embree_ms[i].push_back(
             embree_peer_benchmark(o.peer, result.embree[i].spp, o.timing_frames).frame_ms);
     settings.seed = 1000 + static_cast<uint64_t>(r);
+    settings.quality.denoise = false;
     OurRun run =
         run_ours(scene, *accel, settings, o.frame_ms, max_ms * 1.05, ours_truth, ours_truth_ldr);
     ours_ms_per_spp.push_back(run.time_ms.back() / run.spp.back());
-    for (size_t i = 0; i < o.times_s.size(); ++i) {
+    for (size_t i = 0; i < nt; ++i) {
       double t = 1000.0 * o.times_s[i];
       ours_rmse[i].push_back(rmse_at_time(run.time_ms, run.rmse, t));
       ours_ldr[i].push_back(rmse_at_time(run.time_ms, run.rmse_ldr, t));
       ours_spp[i].push_back(spp_at_time(run, t));
+    }
+    if (o.denoise) {
+      settings.quality.denoise = true;
+      OurRun filtered =
+          run_ours(scene, *accel, settings, o.frame_ms, max_ms * 1.05, ours_truth, ours_truth_ldr);
+      for (size_t i = 0; i < nt; ++i) {
+        double t = 1000.0 * o.times_s[i];
+        denoised[i].push_back(rmse_at_time(filtered.time_ms, filtered.rmse, t));
+        denoised_ldr[i].push_back(rmse_at_time(filtered.time_ms, filtered.rmse_ldr, t));
+      }
     }
     say(fmt::format("repeat {}/{} done", r + 1, o.repeats));
   }
@@ -199,6 +214,8 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
     row.ours_rmse = median(ours_rmse[i]);
     row.ours_rmse_ldr = median(ours_ldr[i]);
     row.ours_spp = median(ours_spp[i]);
+    row.denoised_rmse = median(denoised[i]);  // 0 without the denoiser column
+    row.denoised_rmse_ldr = median(denoised_ldr[i]);
     result.rows.push_back(row);
   }
   return result;

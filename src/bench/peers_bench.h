@@ -21,6 +21,7 @@ struct PeersBenchOptions {
   double frame_ms = 50;                 // our frame budget
   std::string accel = "native";         // our backend (the render command's default)
   std::string truth_dir = "out/truth";  // cache of both references
+  bool denoise = true;                  // also our runs with the denoiser on
 };
 
 // Throws std::invalid_argument naming the first option out of range.
@@ -39,8 +40,12 @@ struct PeersRow {
   double ours_rmse = 0;      // our linear image against our linear reference
   double ours_rmse_ldr = 0;  // both passed through the pathtracer's output transform
   double ours_spp = 0;       // samples per pixel we had at that time (median)
+  // The same with the denoiser on (its filtering counted as frame time); 0 when not run.
+  double denoised_rmse = 0, denoised_rmse_ldr = 0;
   double ratio() const { return ours_rmse / embree_rmse; }
   double ratio_ldr() const { return ours_rmse_ldr / embree_rmse; }
+  double denoised_ratio() const { return denoised_rmse / embree_rmse; }
+  double denoised_ratio_ldr() const { return denoised_rmse_ldr / embree_rmse; }
 };
 
 struct PeersResult {

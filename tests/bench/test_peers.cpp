@@ -120,7 +120,8 @@ TEST(PeersBench, CachedReferenceNameCoversSizePathLengthAndSpp) {
 }
 
 // A real, tiny run: both references are rendered and cached, the pathtracer's error falls with
-// its samples, every row is filled, and a second run reads the cached references.
+// its samples, every row is filled (the denoised columns too), and a second run, without the
+// denoiser, reads the cached references.
 TEST(PeersBench, TinyRunAgainstTheRealPathtracer) {
   PeersBenchOptions o;
   if (!embree_peer_missing(o.peer).empty()) GTEST_SKIP() << embree_peer_missing(o.peer);
@@ -147,10 +148,14 @@ TEST(PeersBench, TinyRunAgainstTheRealPathtracer) {
   for (const PeersRow& row : r.rows) {
     EXPECT_TRUE(std::isfinite(row.ratio()) && row.ratio() > 0);
     EXPECT_TRUE(std::isfinite(row.ratio_ldr()) && row.ratio_ldr() > 0);
+    EXPECT_TRUE(std::isfinite(row.denoised_ratio()) && row.denoised_ratio() > 0);
+    EXPECT_TRUE(std::isfinite(row.denoised_ratio_ldr()) && row.denoised_ratio_ldr() > 0);
     EXPECT_GT(row.ours_spp, 0);
   }
   auto written = std::filesystem::last_write_time(r.embree_reference);
+  o.denoise = false;
   PeersResult again = run_peers_bench(o);
+  EXPECT_EQ(again.rows.front().denoised_rmse, 0.0);  // the column was not run
   EXPECT_EQ(std::filesystem::last_write_time(again.embree_reference), written);
   EXPECT_EQ(again.embree.front().rmse, r.embree.front().rmse);  // same seeds, same image
 }
