@@ -28,6 +28,7 @@ void ProgressiveView::restart() {
   sampler_ = make_sampler(settings_.quality.sampler, settings_.seed);
   renderer_.emplace(scene_, *accel_, camera_, settings_, *sampler_);
   budget_.emplace(*renderer_, frame_ms_);
+  resolver_.camera_moved();
   film_.clear();
   film_samples_ = 0;
 }
@@ -44,6 +45,7 @@ void ProgressiveView::set_camera(const CameraDesc& camera) {
   // per-film bookkeeping start over.
   renderer_->set_camera(camera);
   budget_.emplace(*renderer_, frame_ms_);
+  resolver_.camera_moved();
   film_.clear();
   film_samples_ = 0;
 }
@@ -59,12 +61,29 @@ void ProgressiveView::set_quality(const QualityOptions& quality) {
   restart();
 }
 
+Image ProgressiveView::image() const {
+  return resolver_.resolve(*renderer_, film_);
+}
+
 std::vector<uint8_t> ProgressiveView::display_bytes(float exposure) const {
   const float scale = std::exp2(exposure);
   if (!encoder_ || encoder_->exposure_scale() != scale) encoder_.emplace(scale);
   const DisplayEncoder& encoder = *encoder_;
   const int width = film_.width();
   std::vector<uint8_t> bytes(static_cast<size_t>(width) * film_.height() * 3);
+  if (settings_.quality.denoise) {
+    const Image shown = image();
+    tbb::parallel_for(0, film_.height(), [&](int y) {
+      uint8_t* out = bytes.data() + static_cast<size_t>(y) * width * 3;
+      for (int x = 0; x < width; ++x) {
+        const Color& c = shown.at(x, y);
+        *out++ = encoder.encode(c.x);
+        *out++ = encoder.encode(c.y);
+        *out++ = encoder.encode(c.z);
+      }
+    });
+    return bytes;
+  }
   // Rows in parallel: at 640x360 encoding is a visible part of a 30 fps frame otherwise.
   tbb::parallel_for(0, film_.height(), [&](int y) {
     uint8_t* out = bytes.data() + static_cast<size_t>(y) * width * 3;

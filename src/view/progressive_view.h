@@ -11,6 +11,7 @@
 
 #include "accel/accel.h"
 #include "image/image.h"
+#include "render/denoiser_frame.h"
 #include "render/film.h"
 #include "render/frame_budget.h"
 #include "render/render_settings.h"
@@ -43,8 +44,9 @@ class ProgressiveView {
 
   // Samples per pixel in the film (mean over pixels).
   double film_spp() const { return film_samples_ / pixel_count(); }
-  Image image() const { return film_.resolve(); }
-  // The film as the window shows it: 8-bit sRGB, 3 bytes a pixel, rows top to bottom, scaled
+  // The film's estimate, through the denoiser when the quality options switch it on.
+  Image image() const;
+  // The image as the window shows it: 8-bit sRGB, 3 bytes a pixel, rows top to bottom, scaled
   // by 2^exposure and clamped (what `render --out F.png` writes).
   std::vector<uint8_t> display_bytes(float exposure) const;
 
@@ -67,6 +69,7 @@ class ProgressiveView {
   Film film_;
   double film_samples_ = 0;
   mutable std::optional<DisplayEncoder> encoder_;  // of the last exposure shown
+  mutable FrameResolver resolver_;  // keeps the denoiser's guides while the camera stays
 };
 
 }  // namespace tuneray

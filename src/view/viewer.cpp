@@ -127,7 +127,9 @@ bool apply_key(int key, const ViewerOptions& o, ProgressiveView& view, ViewerCon
       view.set_quality(q);
       break;
     case GLFW_KEY_N:
-      std::cout << "view: this renderer has no denoiser yet" << std::endl;
+      q.denoise = !q.denoise;
+      view.set_quality(q);
+      std::cout << "view: denoiser " << (q.denoise ? "on" : "off") << std::endl;
       break;
     case GLFW_KEY_P:
     case GLFW_KEY_X: {

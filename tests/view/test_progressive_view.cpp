@@ -57,6 +57,30 @@ TEST_F(ProgressiveViewTest, ConvergesToTheOfflineRenderOfItsCamera) {
   EXPECT_GT(other, 3 * same);
 }
 
+// With the denoiser switched on, the view shows the filtered film: closer to the converged
+// offline render than the raw film at the same low sample count.
+TEST_F(ProgressiveViewTest, DenoisedViewIsCloserToTheConvergedImage) {
+  const CameraDesc& camera = scene_.cameras[0];
+  std::vector<uint8_t> converged = testing::offline_display_bytes(scene_, camera, 64, 36, 256);
+  RenderSettings raw_settings = settings_;
+  raw_settings.quality.adaptive = false;
+  ProgressiveView raw(scene_, *accel_, raw_settings, camera, 5);
+  RenderSettings denoised_settings = raw_settings;
+  denoised_settings.quality.denoise = true;
+  ProgressiveView denoised(scene_, *accel_, denoised_settings, camera, 5);
+  while (raw.film_spp() < 4) raw.render_frame();
+  while (denoised.film_spp() < 4) denoised.render_frame();
+  double raw_error = testing::display_rmse(raw.display_bytes(0), converged);
+  double denoised_error = testing::display_rmse(denoised.display_bytes(0), converged);
+  EXPECT_LT(denoised_error, 0.8 * raw_error) << raw_error << " " << denoised_error;
+  // The key's path: switching the option on starts a new film that shows filtered frames.
+  QualityOptions q = raw.settings().quality;
+  q.denoise = true;
+  raw.set_quality(q);
+  EXPECT_EQ(raw.film_spp(), 0);
+  EXPECT_TRUE(raw.settings().quality.denoise);
+}
+
 TEST(DisplayImage, PngHoldsTheShownBytes) {
   testing::TempDir dir;
   std::vector<uint8_t> bytes(4 * 3 * 3);
