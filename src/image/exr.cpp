@@ -8,11 +8,13 @@
 
 #include <exception>
 
+#include "image/exr_check.h"
 #include "image/formats.h"
 
 namespace tuneray::detail {
 
 Image read_exr(const std::string& path) {
+  check_exr_header(path);  // before OpenEXR allocates what a hostile header asks for
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();
