@@ -46,6 +46,8 @@ class ProgressiveView {
   double film_spp() const { return film_samples_ / pixel_count(); }
   // The film's estimate, through the denoiser when the quality options switch it on.
   Image image() const;
+  // The film's own estimate, unfiltered (unbiased) whatever the options say.
+  Image raw_image() const { return film_.resolve(); }
   // The image as the window shows it: 8-bit sRGB, 3 bytes a pixel, rows top to bottom, scaled
   // by 2^exposure and clamped (what `render --out F.png` writes).
   std::vector<uint8_t> display_bytes(float exposure) const;

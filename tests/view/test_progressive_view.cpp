@@ -3,8 +3,13 @@
 #include "accel/factory.h"
 #include "common/temp_dir.h"
 #include "image/io.h"
+#include "image/metrics.h"
 #include "offline_render.h"
+#include "render/film.h"
+#include "render/sampler.h"
+#include "render/tile_renderer.h"
 #include "scene/load.h"
+#include "view/display_encoder.h"
 #include "view/display_image.h"
 #include "view/progressive_view.h"
 
@@ -57,28 +62,43 @@ TEST_F(ProgressiveViewTest, ConvergesToTheOfflineRenderOfItsCamera) {
   EXPECT_GT(other, 3 * same);
 }
 
-// With the denoiser switched on, the view shows the filtered film: closer to the converged
-// offline render than the raw film at the same low sample count.
+// As the window shows it (8-bit sRGB, clamped).
+std::vector<uint8_t> display(const Image& image) {
+  DisplayEncoder encoder(1.0f);
+  std::vector<uint8_t> bytes;
+  for (size_t i = 0; i < image.pixel_count(); ++i)
+    for (float c : {image.data()[i].x, image.data()[i].y, image.data()[i].z})
+      bytes.push_back(encoder.encode(c));
+  return bytes;
+}
+
+// With the denoiser switched on, the view shows the filtered film, which on screen is closer to
+// the converged image than the same film unfiltered (about 0.7x at a few spp; the bound is
+// 0.9x; in linear RMSE the raw light's rim dominates both).
 TEST_F(ProgressiveViewTest, DenoisedViewIsCloserToTheConvergedImage) {
   const CameraDesc& camera = scene_.cameras[0];
-  std::vector<uint8_t> converged = testing::offline_display_bytes(scene_, camera, 64, 36, 256);
-  RenderSettings raw_settings = settings_;
-  raw_settings.quality.adaptive = false;
-  ProgressiveView raw(scene_, *accel_, raw_settings, camera, 5);
-  RenderSettings denoised_settings = raw_settings;
-  denoised_settings.quality.denoise = true;
-  ProgressiveView denoised(scene_, *accel_, denoised_settings, camera, 5);
-  while (raw.film_spp() < 4) raw.render_frame();
-  while (denoised.film_spp() < 4) denoised.render_frame();
-  double raw_error = testing::display_rmse(raw.display_bytes(0), converged);
-  double denoised_error = testing::display_rmse(denoised.display_bytes(0), converged);
-  EXPECT_LT(denoised_error, 0.8 * raw_error) << raw_error << " " << denoised_error;
-  // The key's path: switching the option on starts a new film that shows filtered frames.
-  QualityOptions q = raw.settings().quality;
-  q.denoise = true;
-  raw.set_quality(q);
-  EXPECT_EQ(raw.film_spp(), 0);
-  EXPECT_TRUE(raw.settings().quality.denoise);
+  PcgSampler sampler(7);
+  TileRenderer offline(scene_, *accel_, camera, settings_, sampler);
+  Film converged_film(settings_.width, settings_.height);
+  offline.render_pass(converged_film, 0, 512);
+  const Image converged = converged_film.resolve();
+
+  RenderSettings settings = settings_;
+  settings.quality.adaptive = false;
+  settings.quality.denoise = true;
+  ProgressiveView view(scene_, *accel_, settings, camera, 5);
+  while (view.film_spp() < 2) view.render_frame();
+  const std::vector<uint8_t> target = display(converged);
+  const double raw = testing::display_rmse(display(view.raw_image()), target);
+  const double shown = testing::display_rmse(display(view.image()), target);
+  EXPECT_LT(shown, 0.9 * raw) << raw << " " << shown;
+  // The key's path: switching the option off starts a new film that shows the raw estimate.
+  QualityOptions q = view.settings().quality;
+  q.denoise = false;
+  view.set_quality(q);
+  EXPECT_EQ(view.film_spp(), 0);
+  view.render_frame();
+  EXPECT_EQ(compare_images(view.image(), view.raw_image()).rmse, 0.0);
 }
 
 TEST(DisplayImage, PngHoldsTheShownBytes) {
