@@ -80,6 +80,12 @@ TEST(AssimpLoader, MangledPlyHeaderLinesAreRefused) {
   EXPECT_THAT(testing::load_error(
                   files.write("keyword.ply", "ply\nformat ascii 1.0\nelemnt vertex 3\n" + tail)),
               HasSubstr("keyword.ply: malformed PLY: unknown header line 'elemnt vertex 3'"));
+  // Found by fuzz/fuzz_mesh: assimp never returned from this one.
+  EXPECT_THAT(testing::load_error(files.write(
+                  "end.ply", "ply\nformat ascii 1.0\nelement vertex 3\n" +
+                                 tail.substr(0, tail.find("end_header")) + "end_headerssss\n" +
+                                 tail.substr(tail.find("end_header") + 11))),
+              HasSubstr("end.ply: malformed PLY: bad end_header line 'end_headerssss'"));
   // Comments, obj_info and CRLF line ends are fine.
   Scene s =
       load_scene(files.write("ok.ply",
