@@ -13,13 +13,9 @@
 #include "accel/factory.h"
 #include "bench/equal_time.h"
 #include "bench/ground_truth.h"
+#include "bench/shown_frames.h"
 #include "image/io.h"
 #include "image/metrics.h"
-#include "render/blue_noise_sampler.h"
-#include "render/denoiser_frame.h"
-#include "render/film.h"
-#include "render/frame_budget.h"
-#include "render/tile_renderer.h"
 #include "tuning/stats.h"
 
 namespace tuneray {
@@ -32,28 +28,20 @@ struct OurRun {
   std::vector<double> time_ms, spp, rmse, rmse_ldr;
 };
 
-// Frame-budget frames of the renderer until `total_ms`, with the error of the image after every
-// frame: linear, and through the pathtracer's output transform. With the denoiser on, what a
-// frame shows is the filtered film, and the filtering counts as frame time.
+// Frame-budget frames until `total_ms`, with the error of what each frame shows: linear, and
+// through the pathtracer's output transform.
 OurRun run_ours(const Scene& scene, const Accel& accel, const RenderSettings& settings,
                 double frame_ms, double total_ms, const Image& truth, const Image& truth_ldr) {
-  std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, settings.seed);
-  TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, *sampler);
-  Film film(settings.width, settings.height);
-  FrameBudgetRenderer budget(renderer, frame_ms);
-  FrameResolver resolver;
   OurRun run;
-  double t = 0, spp = 0;
-  while (t < total_ms) {
-    FrameResult frame = budget.render_frame(film);
-    Image image = resolver.resolve(renderer, film);
-    t += frame.ms + (settings.quality.denoise ? resolver.last_ms() : 0.0);
-    spp += frame.spp;
-    run.time_ms.push_back(t);
-    run.spp.push_back(spp);
-    run.rmse.push_back(compare_images(image, truth).rmse);
-    run.rmse_ldr.push_back(compare_images(embree_output_transform(image), truth_ldr).rmse);
-  }
+  run_shown_frames(
+      scene, accel, scene.cameras.at(0), settings, settings.seed, frame_ms,
+      [&](const ShownFrame& f) {
+        run.time_ms.push_back(f.time_ms);
+        run.spp.push_back(f.spp);
+        run.rmse.push_back(compare_images(f.image, truth).rmse);
+        run.rmse_ldr.push_back(compare_images(embree_output_transform(f.image), truth_ldr).rmse);
+        return f.time_ms < total_ms;
+      });
   return run;
 }
 

@@ -7,11 +7,11 @@
 
 #include "accel/factory.h"
 #include "bench/quality_configs.h"
+#include "bench/shown_frames.h"
 #include "image/metrics.h"
 #include "render/blue_noise_sampler.h"
 #include "render/denoiser_frame.h"
 #include "render/film.h"
-#include "render/frame_budget.h"
 #include "render/tile_renderer.h"
 #include "scene/load.h"
 #include "scene/one_texel.h"
@@ -53,25 +53,15 @@ double measure_ms_per_spp(const Scene& scene, const Accel& accel, const CameraDe
 FrameRun run_frames(const Scene& scene, const Accel& accel, const CameraDesc& camera,
                     const RenderSettings& settings, double frame_ms, int frames, uint64_t seed,
                     const Image& truth) {
-  std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, seed);
-  TileRenderer renderer(scene, accel, camera, settings, *sampler);
-  Film film(settings.width, settings.height);
-  FrameBudgetRenderer budget(renderer, frame_ms);
-  FrameResolver resolver;
   FrameRun run;
-  double t = 0, spp = 0;
   PassStats total;
-  for (int f = 0; f < frames; ++f) {
-    FrameResult frame = budget.render_frame(film);
-    total.accumulate(frame.stats);
-    Image shown = resolver.resolve(renderer, film);
-    // A denoised frame is ready only once it is filtered: its time counts (equal time).
-    t += frame.ms + (settings.quality.denoise ? resolver.last_ms() : 0.0);
-    spp += frame.spp;
-    run.time_ms.push_back(t);
-    run.spp.push_back(spp);
-    run.rmse.push_back(rmse(shown, truth));
-  }
+  run_shown_frames(scene, accel, camera, settings, seed, frame_ms, [&](const ShownFrame& f) {
+    total.accumulate(f.frame.stats);
+    run.time_ms.push_back(f.time_ms);
+    run.spp.push_back(f.spp);
+    run.rmse.push_back(rmse(f.image, truth));
+    return static_cast<int>(run.rmse.size()) < frames;
+  });
   run.mrays_per_s = total.mrays_per_s();
   return run;
 }

@@ -1,9 +1,13 @@
 #include "image/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -14,14 +18,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The hidden temporary name the content of `path` is written to first.
+constexpr const char* kPartialMark = ".partial-";
+
+// The hidden temporary name the content of `path` is written to first: ".NAME.partial-PID-N".
 std::string temporary_path_for(const std::string& path) {
   static std::atomic<unsigned> counter{0};
   const fs::path p(path);
   // Built by appending: GCC 12 warns falsely (-Wrestrict) on "." + std::string.
   std::string name = ".";
   name += p.filename().string();
-  name += ".partial-";
+  name += kPartialMark;
   name += std::to_string(getpid());
   name += '-';
   name += std::to_string(counter++);
@@ -49,6 +55,20 @@ void replace_file(const std::string& path, const std::function<void(const std::s
     throw;
   }
   rename_over(temporary, path);
+}
+
+void remove_stale_temporaries(const std::string& dir) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const size_t mark = name.find(kPartialMark);
+    if (name[0] != '.' || mark == std::string::npos) continue;
+    const long pid = std::strtol(name.c_str() + mark + std::strlen(kPartialMark), nullptr, 10);
+    if (pid <= 0 || pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM)
+      continue;
+    std::error_code ignored;  // another run may have removed it first
+    fs::remove(entry.path(), ignored);
+  }
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

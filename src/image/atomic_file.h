@@ -15,6 +15,10 @@ namespace tuneray {
 // propagates (std::runtime_error naming `path` for the rename).
 void replace_file(const std::string& path, const std::function<void(const std::string&)>& write);
 
+// Removes from `dir` the temporary files of writes that a kill interrupted, once their process
+// is gone; a live process's temporary is left alone (it may still be renamed into place).
+void remove_stale_temporaries(const std::string& dir);
+
 // replace_file for a whole text at once (reports, JSON).
 void write_text_file(const std::string& path, const std::string& text);
 

@@ -71,20 +71,15 @@ std::vector<uint32_t> allocate_adaptive_samples(const Film& film, uint64_t budge
           // Four partial sums each: one running sum would make every pixel wait for the add
           // before it.
           double g[4] = {0, 0, 0, 0}, slope[4] = {0, 0, 0, 0};
+          auto add = [&](size_t lane, size_t i) {
+            double t = target(c, i);
+            g[lane] += t;
+            slope[lane] += t > 0 && c * sigma[i] < cap ? sigma[i] : 0.0;
+          };
           size_t i = r.begin();
           for (; i + 4 <= r.end(); i += 4)
-            for (size_t k = 0; k < 4; ++k) {
-              double want = c * sigma[i + k];
-              double t = std::max(0.0, std::min(want, cap) - have[i + k]);
-              g[k] += t;
-              slope[k] += t > 0 && want < cap ? sigma[i + k] : 0.0;
-            }
-          for (; i < r.end(); ++i) {
-            double want = c * sigma[i];
-            double t = std::max(0.0, std::min(want, cap) - have[i]);
-            g[0] += t;
-            slope[0] += t > 0 && want < cap ? sigma[i] : 0.0;
-          }
+            for (size_t k = 0; k < 4; ++k) add(k, i + k);
+          for (; i < r.end(); ++i) add(0, i);
           v.g += (g[0] + g[1]) + (g[2] + g[3]);
           v.slope += (slope[0] + slope[1]) + (slope[2] + slope[3]);
           return v;

@@ -1,20 +1,15 @@
 #include "tuning/eval_report.h"
 
 #include <fmt/core.h>
-#include <signal.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
 #include <stdexcept>
-#include <system_error>
 
 #include "image/atomic_file.h"
 #include "tuning/eval_metrics.h"
@@ -78,7 +73,7 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
 }
 
 // gnuplot script for one figure, written as both PNG and SVG. The image goes to `outfile` when
-// the caller defines it (run_gnuplot, which renames it), else straight to its name.
+// the caller defines it (run_gnuplot draws aside and renames), else straight to its name.
 void write_plot(const fs::path& dir, const std::string& stem, const std::string& body) {
   for (const char* kind : {"png", "svg"}) {
     auto f = open_out(dir / (stem + "." + kind + ".gp"));
@@ -93,42 +88,22 @@ void write_plot(const fs::path& dir, const std::string& stem, const std::string&
   }
 }
 
-// Temporary files of writes that a kill interrupted (image/atomic_file.h and run_gnuplot name
-// them ".NAME.partial-PID..."): removed once their process is gone, so kills leave no litter.
-// A live process's temporary is left alone: it may still be renamed into place.
-void remove_stale_temporaries(const fs::path& dir) {
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    const size_t mark = name.find(".partial-");
-    if (name[0] != '.' || mark == std::string::npos) continue;
-    const long pid = std::strtol(name.c_str() + mark + std::strlen(".partial-"), nullptr, 10);
-    if (pid <= 0 || pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM)
-      continue;
-    std::error_code ignored;  // another run may have removed it first
-    fs::remove(entry.path(), ignored);
-  }
-}
-
-// Each image is drawn under a temporary name and renamed once gnuplot succeeded, like every
-// file of the report: a kill mid-plot leaves the previous image whole, and a gnuplot orphaned
-// by a kill only ever writes its own temporary file.
 bool run_gnuplot(const fs::path& dir) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
   bool ok = true;
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().extension() == ".gp") {
-      const std::string image = entry.path().stem().string();
-      const std::string temporary = fmt::format(".{}.partial-{}", image, ::getpid());
-      std::string cmd = fmt::format("cd '{}' && gnuplot -e \"outfile='{}'\" '{}' 2>/dev/null",
-                                    dir.string(), temporary, entry.path().filename().string());
-      std::error_code ec;
-      if (std::system(cmd.c_str()) == 0)
-        fs::rename(dir / temporary, dir / image, ec);
-      else
-        ec = std::make_error_code(std::errc::io_error);
-      if (ec) {
-        fs::remove(dir / temporary, ec);
+      const fs::path image = dir / entry.path().stem();
+      try {
+        replace_file(image.string(), [&](const std::string& temporary) {
+          // gnuplot runs in `dir`; the temporary lies beside the image there.
+          std::string cmd = fmt::format("cd '{}' && gnuplot -e \"outfile='{}'\" '{}' 2>/dev/null",
+                                        dir.string(), fs::path(temporary).filename().string(),
+                                        entry.path().filename().string());
+          if (std::system(cmd.c_str()) != 0 || !fs::exists(temporary))
+            throw std::runtime_error("gnuplot failed on " + entry.path().string());
+        });
+      } catch (const std::runtime_error&) {
         ok = false;
       }
     }
@@ -310,8 +285,8 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
                               const std::string& command_line) {
   fs::path dir(out_dir);
   fs::create_directories(dir / "plots");
-  remove_stale_temporaries(dir);
-  remove_stale_temporaries(dir / "plots");
+  remove_stale_temporaries(dir.string());
+  remove_stale_temporaries((dir / "plots").string());
   write_csvs(r, dir);
   std::vector<EvalSummary> summaries = summarise(r);
   {

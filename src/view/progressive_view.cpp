@@ -71,30 +71,28 @@ std::vector<uint8_t> ProgressiveView::display_bytes(float exposure) const {
   const DisplayEncoder& encoder = *encoder_;
   const int width = film_.width();
   std::vector<uint8_t> bytes(static_cast<size_t>(width) * film_.height() * 3);
-  if (settings_.quality.denoise) {
-    const Image shown = image();
+  // Rows in parallel: at 640x360 encoding is a visible part of a 30 fps frame otherwise.
+  auto encode = [&](const auto& pixel) {
     tbb::parallel_for(0, film_.height(), [&](int y) {
       uint8_t* out = bytes.data() + static_cast<size_t>(y) * width * 3;
       for (int x = 0; x < width; ++x) {
-        const Color& c = shown.at(x, y);
+        const Color c = pixel(x, y);
         *out++ = encoder.encode(c.x);
         *out++ = encoder.encode(c.y);
         *out++ = encoder.encode(c.z);
       }
     });
-    return bytes;
-  }
-  // Rows in parallel: at 640x360 encoding is a visible part of a 30 fps frame otherwise.
-  tbb::parallel_for(0, film_.height(), [&](int y) {
-    uint8_t* out = bytes.data() + static_cast<size_t>(y) * width * 3;
-    for (int x = 0; x < width; ++x) {
+  };
+  if (settings_.quality.denoise) {
+    const Image shown = image();
+    encode([&](int x, int y) { return shown.at(x, y); });
+  } else {
+    // The film's means directly: no resolved image to allocate every frame.
+    encode([&](int x, int y) {
       const uint32_t n = film_.samples(x, y);
-      const Color mean = n > 0 ? film_.sum(x, y) / static_cast<float>(n) : Color(0.0f);
-      *out++ = encoder.encode(mean.x);
-      *out++ = encoder.encode(mean.y);
-      *out++ = encoder.encode(mean.z);
-    }
-  });
+      return n > 0 ? film_.sum(x, y) / static_cast<float>(n) : Color(0.0f);
+    });
+  }
   return bytes;
 }
 

@@ -1,21 +1,16 @@
-// Runs the tuneray binary in a child process and captures what it did, so tests can check
-// exit codes (and that no signal killed it) and messages.
+// Runs the tuneray binary in a child process (common/run_program.h) and captures what it did.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "common/run_program.h"
+
 namespace tuneray::testing {
 
-struct CommandResult {
-  int exit_code = -1;     // valid when !signaled
-  bool signaled = false;  // killed by a signal (a crash)
-  int signal = 0;
-  std::string output;  // stdout and stderr together
-};
+using CommandResult = ProgramResult;
 
-// Arguments are passed without a shell.
+// `args` follow the binary's path; no shell.
 CommandResult run_tuneray(const std::vector<std::string>& args);
-std::string tuneray_binary();
 
 }  // namespace tuneray::testing

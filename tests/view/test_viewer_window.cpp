@@ -8,10 +8,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/run_program.h"
 #include "common/temp_dir.h"
 #include "image/io.h"
 #include "offline_render.h"
-#include "run_program.h"
 #include "scene/camera_spline.h"
 #include "scene/load.h"
 #include "view/viewer.h"
@@ -50,7 +50,7 @@ const std::map<std::string, std::optional<std::string>> kMesaChild = {
 
 TEST(ViewerWindow, WithoutADisplayFailsWithOneLine) {
   testing::ProgramResult r = testing::run_program(
-      {testing::tuneray_path(), "view", "cornell", "--frames", "1"}, kNoDisplay);
+      {testing::tuneray_binary(), "view", "cornell", "--frames", "1"}, kNoDisplay);
   ASSERT_FALSE(r.signaled) << r.output;
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_EQ(line_count(r.output), 1u) << r.output;
@@ -62,11 +62,11 @@ TEST(ViewerWindow, WithoutADisplayFailsWithOneLine) {
 
 TEST(ViewerWindow, BadOptionsFailBeforeOpeningAWindow) {
   testing::ProgramResult r = testing::run_program(
-      {testing::tuneray_path(), "view", "cornell", "--screenshot", "x.png"}, kNoDisplay);
+      {testing::tuneray_binary(), "view", "cornell", "--screenshot", "x.png"}, kNoDisplay);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("--screenshot needs --frames"), std::string::npos) << r.output;
   r = testing::run_program(
-      {testing::tuneray_path(), "view", "cornell", "--frames", "1", "--screenshot", "x.jpg"},
+      {testing::tuneray_binary(), "view", "cornell", "--frames", "1", "--screenshot", "x.jpg"},
       kNoDisplay);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_EQ(line_count(r.output), 1u) << r.output;
@@ -85,7 +85,7 @@ TEST(ViewerWindow, ScreenshotOfARecordedFlightMatchesAnOfflineRender) {
                                                    "-a",
                                                    "-s",
                                                    "-screen 0 640x480x24",
-                                                   testing::tuneray_path(),
+                                                   testing::tuneray_binary(),
                                                    "view",
                                                    "cornell",
                                                    "--size",

@@ -1,4 +1,4 @@
-#include "run_program.h"
+#include "common/run_program.h"
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -9,7 +9,7 @@
 
 namespace tuneray::testing {
 
-std::string tuneray_path() {
+std::string tuneray_binary() {
   const char* bin = std::getenv("TUNERAY_BIN");
   return bin ? bin : TUNERAY_BINARY_DIR "/src/app/tuneray";
 }
@@ -50,10 +50,12 @@ ProgramResult run_program(const std::vector<std::string>& argv,
   close(fds[0]);
   int status = 0;
   waitpid(pid, &status, 0);
-  if (WIFSIGNALED(status))
+  if (WIFSIGNALED(status)) {
     result.signaled = true;
-  else
+    result.signal = WTERMSIG(status);
+  } else {
     result.exit_code = WEXITSTATUS(status);
+  }
   return result;
 }
 
