@@ -4,14 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <set>
-#include <stdexcept>
 
 #include "image/atomic_file.h"
+#include "tuning/eval_figures.h"
 #include "tuning/eval_metrics.h"
 #include "tuning/stats.h"
 
@@ -26,10 +23,8 @@ ReplacingFile open_out(const fs::path& path) {
   return ReplacingFile(path.string());
 }
 
-// Numbers in CSV and report share one format, so the report can be checked against the CSV.
 std::string num(double v) {
-  if (std::isinf(v)) return "inf";
-  return fmt::format("{:.3f}", v);
+  return report_number(v);
 }
 
 std::vector<double> finite(const std::vector<double>& v) {
@@ -72,160 +67,12 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
   preds.commit();
 }
 
-// gnuplot script for one figure, written as both PNG and SVG. The image goes to `outfile` when
-// the caller defines it (run_gnuplot draws aside and renames), else straight to its name.
-void write_plot(const fs::path& dir, const std::string& stem, const std::string& body) {
-  for (const char* kind : {"png", "svg"}) {
-    auto f = open_out(dir / (stem + "." + kind + ".gp"));
-    if (std::string(kind) == "png")
-      f << "set terminal pngcairo size 900,500 font ',10'\n";
-    else
-      f << "set terminal svg size 900,500 font 'sans,10'\n";
-    f << "if (!exists('outfile')) outfile = '" << stem << "." << kind << "'\n"
-      << "set output outfile\n"
-      << body;
-    f.commit();
-  }
-}
-
-bool run_gnuplot(const fs::path& dir) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) return false;
-  bool ok = true;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".gp") {
-      const fs::path image = dir / entry.path().stem();
-      try {
-        replace_file(image.string(), [&](const std::string& temporary) {
-          // gnuplot runs in `dir`; the temporary lies beside the image there.
-          std::string cmd = fmt::format("cd '{}' && gnuplot -e \"outfile='{}'\" '{}' 2>/dev/null",
-                                        dir.string(), fs::path(temporary).filename().string(),
-                                        entry.path().filename().string());
-          if (std::system(cmd.c_str()) != 0 || !fs::exists(temporary))
-            throw std::runtime_error("gnuplot failed on " + entry.path().string());
-        });
-      } catch (const std::runtime_error&) {
-        ok = false;
-      }
-    }
-  return ok;
-}
-
-void write_plots(const EvalResults& r, const std::vector<EvalSummary>& summaries,
-                 const fs::path& dir) {
-  std::set<std::string> objectives;
-  std::vector<std::string> scenes;
-  for (const EvalSummary& s : summaries) {
-    objectives.insert(s.objective);
-    if (std::find(scenes.begin(), scenes.end(), s.scene) == scenes.end()) scenes.push_back(s.scene);
-  }
-  std::string xtics = "set xtics (";
-  for (size_t i = 0; i < scenes.size(); ++i)
-    xtics += fmt::format("{}'{}' {}", i ? ", " : "", scenes[i], i + 1);
-  xtics += ") rotate by -20\nset xrange [0.5:" + std::to_string(scenes.size() + 0.5) + "]\n";
-  auto scene_index = [&](const std::string& s) {
-    return static_cast<int>(std::find(scenes.begin(), scenes.end(), s) - scenes.begin() + 1);
-  };
-
-  // One box per (scene, series): each series is a block of its own in the data file (gnuplot's
-  // box plot cannot filter rows), plotted with `index`.
-  using Series = std::map<std::pair<int, int>, std::vector<double>>;
-  auto box_plot = [&](const std::string& file, const Series& series) {
-    auto d = open_out(dir / file);
-    std::string plot;
-    int block = 0;
-    double lo = 1.0, hi = 1.0;  // the reference line y = 1 stays in view
-    for (const auto& [key, values] : series) {
-      if (values.empty()) continue;
-      for (double v : values)
-        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-      if (block > 0) d << "\n\n";
-      for (double v : values) d << num(v) << '\n';
-      auto [scene, k] = key;
-      double x = series.rbegin()->first.second > 1 ? scene + (k == 1 ? -0.18 : 0.18) : scene;
-      plot += fmt::format("{}'{}' index {} using ({}):1 with boxplot lc {}",
-                          block == 0 ? "plot " : ", ", file, block, x, k);
-      ++block;
-    }
-    d.commit();
-    // gnuplot 5.4 cannot autoscale y for box plots at fixed x: give the range.
-    double pad = 0.05 * (hi - lo) + 1e-3;
-    std::string range = fmt::format("set yrange [{}:{}]\n", lo - pad, hi + pad);
-    return range + (plot.empty() ? std::string("plot 1 with lines lc 'gray'\n")
-                                 : plot + ", 1 with lines lc 'gray'\n");
-  };
-  const std::string box_style =
-      "set style boxplot outliers pointtype 7\nset boxwidth 0.3\n"
-      "set style fill solid 0.3\nset grid y\nunset key\n";
-
-  for (const std::string& obj : objectives) {
-    Series search, predicted;
-    for (const CameraRecord& c : r.cameras)
-      if (c.objective == obj) {
-        search[{scene_index(c.scene), 1}].push_back(c.search_speedup());
-        search[{scene_index(c.scene), 2}].push_back(c.native_speedup());
-      }
-    for (const PredictionRecord& pr : r.predictions)
-      if (pr.objective == obj)
-        predicted[{scene_index(pr.scene), pr.predictor == "nn" ? 1 : 2}].push_back(pr.speedup);
-    write_plot(dir, "search_speedup_" + obj,
-               "set title 'Converged search per camera (" + obj +
-                   "): left over the default configuration, right over native Embree'\n"
-                   "set ylabel 'speedup'\n" +
-                   box_style + xtics + box_plot("search_speedup_" + obj + ".dat", search));
-    write_plot(dir, "predictor_speedup_" + obj,
-               "set title 'Prediction vs search, accumulated frame time (" + obj +
-                   "): left NN, right RBF'\nset ylabel 'speedup over search'\n" + box_style +
-                   xtics + box_plot("predictor_speedup_" + obj + ".dat", predicted));
-
-    auto roof = open_out(dir / ("roofline_" + obj + ".dat"));
-    auto be = open_out(dir / ("break_even_" + obj + ".dat"));
-    int finite_break_evens = 0;
-    for (const PredictionRecord& pr : r.predictions) {
-      if (pr.objective != obj) continue;
-      int k = pr.predictor == "nn" ? 1 : 2;
-      roof << pr.camera + (k == 1 ? 0.0 : 0.3) + 100 * (scene_index(pr.scene) - 1) << ' '
-           << num(pr.roofline) << ' ' << k << '\n';
-      if (std::isfinite(pr.break_even)) {
-        be << pr.break_even << ' ' << k << '\n';
-        ++finite_break_evens;
-      }
-    }
-    roof.commit();
-    be.commit();
-    write_plot(
-        dir, "roofline_" + obj,
-        "set title 'Fraction of the best known configuration (" + obj +
-            ")'\n"
-            "set xlabel 'camera (100 x scene index + camera)'\nset ylabel 'best / predicted'\n"
-            "set yrange [0:1.1]\nset grid\nset key bottom right\n"
-            "plot 'roofline_" +
-            obj +
-            ".dat' using 1:($3==1?$2:1/0) title 'NN' pt 7 ps 0.6, "
-            "'' using 1:($3==2?$2:1/0) title 'RBF' pt 5 ps 0.6\n");
-    // Break-even frames span orders of magnitude: quarter-decade bins on a log axis. With no
-    // finite break-even at all there is nothing to bin (gnuplot would refuse the empty log
-    // axis): the plot says so instead.
-    const std::string be_title =
-        "set title 'Break-even frame: when search pays for its exploration (" + obj +
-        "; never-cases not shown)'\nset xlabel 'frame'\n"
-        "set ylabel 'count'\nset grid y\n";
-    write_plot(dir, "break_even_" + obj,
-               finite_break_evens == 0
-                   ? be_title +
-                         "set label 'the search never paid off: every prediction was at least as "
-                         "fast as its result' at graph 0.5,0.5 center\n"
-                         "set xrange [1:100]\nset yrange [0:1]\nplot NaN notitle\n"
-                   : be_title +
-                         "set logscale x\nbin(x) = 10**(0.25*floor(4*log10(x)))\n"
-                         "plot 'break_even_" +
-                         obj +
-                         ".dat' using (bin($1)):($2==1?1:0) smooth frequency with impulses lw 8 "
-                         "title 'NN', '' using (bin($1)*1.12):($2==2?1:0) smooth frequency with "
-                         "impulses lw 8 title 'RBF'\n");
-  }
-}
-
 }  // namespace
+
+std::string report_number(double v) {
+  if (std::isinf(v)) return "inf";
+  return fmt::format("{:.3f}", v);
+}
 
 std::vector<EvalSummary> summarise(const EvalResults& r) {
   std::vector<EvalSummary> out;
@@ -307,8 +154,8 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
                        num(s.rbf_native_speedup_median));
     f.commit();
   }
-  write_plots(r, summaries, dir / "plots");
-  bool plotted = run_gnuplot(dir / "plots");
+  write_eval_figures(r, summaries, (dir / "plots").string());
+  bool plotted = draw_eval_figures((dir / "plots").string());
 
   const EvalProfile& p = r.profile;
   fs::path report_path = dir / "report.md";
@@ -396,11 +243,15 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
        << fmt::format("| roofline, mean over scenes | NN {} %, RBF {} % | {} |\n\n",
                       num(100 * mean_of(nn_roof)), num(100 * mean_of(rbf_roof)),
                       obj == std::string("render") ? "> 95 %" : "NN 92 %, RBF 83 %");
-    if (plotted)
-      md << "![search speedup](plots/search_speedup_" << obj << ".png)\n"
-         << "![predictor speedup](plots/predictor_speedup_" << obj << ".png)\n"
-         << "![roofline](plots/roofline_" << obj << ".png)\n"
-         << "![break-even](plots/break_even_" << obj << ".png)\n\n";
+    if (plotted) {
+      for (const char* figure : {"search_speedup", "predictor_speedup", "roofline", "break_even"})
+        md << "![" << figure << "](plots/" << figure << "_" << obj << ".png)\n";
+      for (const EvalSummary& s : summaries)
+        if (s.objective == obj)
+          md << "![tuning trace " << s.scene << "](plots/" << trace_figure_stem(s.scene, obj)
+             << ".png)\n";
+      md << "\n";
+    }
   }
   if (!plotted) md << "Plots: gnuplot was not available or failed; the scripts are in plots/.\n\n";
   md << "Definitions: *search speedup* = default / converged configuration, both re-measured "

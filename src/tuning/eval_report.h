@@ -30,6 +30,10 @@ struct EvalSummary {
 
 std::vector<EvalSummary> summarise(const EvalResults& results);
 
+// Numbers in the CSV files, the report and the figures' data share one format (3 decimals,
+// "inf"), so the report can be checked against the CSV.
+std::string report_number(double v);
+
 // Writes cameras.csv, search_frames.csv, predictions.csv, summary.csv, report.md and plots/ in
 // `out_dir`. Plots need gnuplot; without it the report says so. Returns the report's path.
 std::string write_eval_report(const EvalResults& results, const std::string& out_dir,
