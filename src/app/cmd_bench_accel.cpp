@@ -69,10 +69,11 @@ TraversalHooks traversal_printer(const AccelBenchOptions& args) {
   h.render = [args](const RenderLevelRun& run) {
     const RenderVsNative& r = run.result;
     std::printf(
-        "render %dx%d, %u spp, %s scheduler, first camera, median of %d: native %.2f ms, "
-        "chosen %.2f ms -> %.3fx native\n  chosen: %s\n  (%s)\n",
+        "render %dx%d, %u spp, %s scheduler, first camera, %zu interleaved rounds: native %.2f ms, "
+        "chosen %.2f ms (medians) -> %.3fx native, 95%% CI %.3f-%.3f%s\n  chosen: %s\n  (%s)\n",
         run.options.width, run.options.height, run.options.spp, run.scheduler.c_str(),
-        run.options.repeats, r.native_median_ms, r.chosen_median_ms, r.speedup(), r.config.c_str(),
+        r.native_ms.size(), r.native_median_ms, r.chosen_median_ms, r.speedup(), r.speedup_low,
+        r.speedup_high, r.converged ? "" : " (not within +-3 % at the cap)", r.config.c_str(),
         run.source.c_str());
     std::fflush(stdout);
   };

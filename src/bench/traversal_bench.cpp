@@ -24,7 +24,8 @@ RenderLevelRun render_run(const AccelBenchOptions& a, const Scene& scene, const 
   o.width = a.width;
   o.height = a.height;
   o.spp = a.spp;
-  o.repeats = std::max(1, a.repeats);
+  o.repeats = std::max(2, a.repeats);
+  o.max_repeats = std::max(o.repeats, 30);
   o.wavefront = a.scheduler == "wavefront";
   run.scheduler = a.scheduler;
   const CameraDesc& camera = scene.cameras.front();
@@ -161,7 +162,9 @@ nlohmann::json traversal_scene_json(const TraversalScene& scene) {
     out["render"] = {{"size", size_text(run.options.width, run.options.height)},
                      {"spp", run.options.spp},
                      {"scheduler", run.scheduler},
-                     {"repeats", run.options.repeats},
+                     {"min_repeats", run.options.repeats},
+                     {"max_repeats", run.options.max_repeats},
+                     {"rounds", r.native_ms.size()},
                      {"config", r.config},
                      {"source", run.source},
                      {"native_ms", r.native_ms},
@@ -170,7 +173,9 @@ nlohmann::json traversal_scene_json(const TraversalScene& scene) {
                      {"chosen_median_ms", r.chosen_median_ms},
                      {"native_build_ms", r.native_build_ms},
                      {"chosen_build_ms", r.chosen_build_ms},
-                     {"speedup_over_native", r.speedup()}};
+                     {"speedup_over_native", r.speedup()},
+                     {"speedup_ci95", {r.speedup_low, r.speedup_high}},
+                     {"ci_within_target", r.converged}};
   }
   return out;
 }

@@ -9,6 +9,7 @@
 #include "tuner/tuning_db.h"
 #include "tuning/bvh_space.h"
 #include "tuning/frame_bench.h"
+#include "tuning/interleaved_ratios.h"
 #include "tuning/stats.h"
 #include "tuning/tune_session.h"
 #include "tuning/tuner_state.h"
@@ -31,8 +32,11 @@ RenderSettings settings_of(const RenderVsNativeOptions& o) {
 
 RenderVsNative render_vs_native(const Scene& scene, const CameraDesc& camera,
                                 const AccelChoice& chosen, const RenderVsNativeOptions& o) {
-  if (o.repeats < 1 || o.spp < 1 || o.width < 1 || o.height < 1 || o.max_bounces < 1)
-    throw std::invalid_argument("render vs native: repeats, spp, size and bounces must be >= 1");
+  if (o.repeats < 2 || o.max_repeats < o.repeats || !(o.target_half_width > 0) || o.spp < 1 ||
+      o.width < 1 || o.height < 1 || o.max_bounces < 1)
+    throw std::invalid_argument(
+        "render vs native: need 2 <= repeats <= max_repeats, a positive target, and spp, size "
+        "and bounces >= 1");
   FrameBench bench(scene, settings_of(o), o.spp, Objective::kRender);
   const AccelChoice native = AccelChoice::native();
   RenderVsNative r;
@@ -42,15 +46,24 @@ RenderVsNative render_vs_native(const Scene& scene, const CameraDesc& camera,
   FrameCost first = bench.run(chosen, camera);
   if (!first.ok) throw std::runtime_error("render vs native: " + r.config + ": " + first.error);
   r.chosen_build_ms = first.build_ms;
-  // Alternating which goes first spreads a drift of the machine's load over both.
-  for (int k = 0; k < o.repeats; ++k) {
-    const bool native_first = k % 2 == 0;
-    for (int j = 0; j < 2; ++j) {
-      const bool is_native = (j == 0) == native_first;
-      const double ms = bench.run(is_native ? native : chosen, camera).render_ms;
-      (is_native ? r.native_ms : r.chosen_ms).push_back(ms);
-    }
-  }
+  InterleavedOptions interleaving;
+  interleaving.min_rounds = o.repeats;
+  interleaving.max_rounds = o.max_repeats;
+  interleaving.target_half_width = o.target_half_width;
+  constexpr int kNative = 0, kChosen = 1;
+  const InterleavedResult paired = measure_interleaved(
+      2, kChosen,
+      [&](int candidate) {
+        const double ms = bench.run(candidate == kNative ? native : chosen, camera).render_ms;
+        (candidate == kNative ? r.native_ms : r.chosen_ms).push_back(ms);
+        return ms;
+      },
+      interleaving);
+  const RatioInterval& speedup = paired.ratios[kNative];
+  r.paired_speedup = speedup.ratio;
+  r.speedup_low = speedup.low;
+  r.speedup_high = speedup.high;
+  r.converged = paired.converged;
   r.native_median_ms = median(r.native_ms);
   r.chosen_median_ms = median(r.chosen_ms);
   return r;

@@ -1,5 +1,6 @@
 // A configuration against native Embree at the level that matters, a rendered frame: the same
-// scene, camera, spp and scheduler, frames of the two interleaved, medians of the repeats. Rays
+// scene, camera, spp and scheduler, frames of the two interleaved (tuning/interleaved_ratios.h),
+// repeated until the speedup's 95 % confidence interval is within ±3 % or a cap is reached. Rays
 // per second on fixed ray sets (`bench traversal`'s table) leave out what a frame adds around
 // the traversal (shading, shadow rays, wave compaction) and how the tree's shape meets the
 // renderer's rays, so the table alone cannot say whether a configuration wins in the render.
@@ -21,18 +22,24 @@ struct RenderVsNativeOptions {
   int width = 320, height = 180;
   uint32_t spp = 1;
   int max_bounces = 3;
-  int repeats = 5;  // timed frames of each, after one untimed frame each (builds, warm-up)
+  int repeats = 5;       // at least this many timed frames of each, after one untimed frame each
+  int max_repeats = 30;  // the cap (>= repeats)
+  double target_half_width = 0.03;  // of the speedup's 95 % confidence interval
   bool wavefront = QualityOptions{}.wavefront;
   uint64_t seed = 1;
 };
 
 struct RenderVsNative {
-  std::string config;                        // the configuration compared (AccelChoice text)
-  std::vector<double> native_ms, chosen_ms;  // render time of each timed frame, in order
+  std::string config;  // the configuration compared (AccelChoice text)
+  // Render time of each timed frame, in order; entry k of both lists is round k of the pairs.
+  std::vector<double> native_ms, chosen_ms;
   double native_median_ms = 0, chosen_median_ms = 0;
   double native_build_ms = 0, chosen_build_ms = 0;
-  // > 1: the configuration renders faster than native Embree.
-  double speedup() const { return chosen_median_ms > 0 ? native_median_ms / chosen_median_ms : 0; }
+  // native / chosen: the geometric mean over rounds of the paired ratios, > 1 when the
+  // configuration renders faster than native Embree; its 95 % confidence interval.
+  double paired_speedup = 0, speedup_low = 0, speedup_high = 0;
+  bool converged = false;  // the interval reached the target before the cap
+  double speedup() const { return paired_speedup; }
 };
 
 // Native Embree is built as `render --accel native` builds it (medium quality). Throws

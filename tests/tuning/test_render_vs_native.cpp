@@ -1,10 +1,11 @@
-// The render-level comparison of `bench traversal`: interleaved repeats of native and the
-// chosen configuration on the same frame, medians and their ratio; the database's best found
-// under tune's key.
+// The render-level comparison of `bench traversal`: paired rounds of native and the chosen
+// configuration on the same frame until the speedup's interval is tight or the cap; the
+// database's best found under tune's key.
 #include <gtest/gtest.h>
 
 #include "tuning_fixtures.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "scene/load.h"
@@ -24,19 +25,29 @@ RenderVsNativeOptions tiny() {
   return o;
 }
 
-TEST(RenderVsNative, MediansOfInterleavedRepeatsAndTheirRatio) {
+TEST(RenderVsNative, PairedRoundsUntilTheIntervalIsTightOrTheCap) {
   Scene scene = load_scene("cornell");
   BvhConfig wide;
   wide.branching = 8;
-  RenderVsNative r = render_vs_native(scene, scene.cameras[0], AccelChoice::tuned(wide), tiny());
+  RenderVsNativeOptions o = tiny();
+  o.max_repeats = 6;
+  RenderVsNative r = render_vs_native(scene, scene.cameras[0], AccelChoice::tuned(wide), o);
   EXPECT_EQ(r.config, AccelChoice::tuned(wide).to_string());
-  ASSERT_EQ(r.native_ms.size(), 3u);
-  ASSERT_EQ(r.chosen_ms.size(), 3u);
+  ASSERT_EQ(r.native_ms.size(), r.chosen_ms.size());
+  ASSERT_GE(r.native_ms.size(), 3u);
+  ASSERT_LE(r.native_ms.size(), 6u);
+  EXPECT_EQ(r.converged, r.native_ms.size() < 6u || r.speedup_high / r.speedup() - 1 <= 0.03);
   for (double ms : r.native_ms) EXPECT_GT(ms, 0.0);
   for (double ms : r.chosen_ms) EXPECT_GT(ms, 0.0);
   EXPECT_DOUBLE_EQ(r.native_median_ms, median(r.native_ms));
   EXPECT_DOUBLE_EQ(r.chosen_median_ms, median(r.chosen_ms));
-  EXPECT_DOUBLE_EQ(r.speedup(), r.native_median_ms / r.chosen_median_ms);
+  // The speedup is the geometric mean of the rounds' paired ratios, inside its interval.
+  double log_sum = 0;
+  for (size_t k = 0; k < r.native_ms.size(); ++k)
+    log_sum += std::log(r.native_ms[k] / r.chosen_ms[k]);
+  EXPECT_NEAR(r.speedup(), std::exp(log_sum / static_cast<double>(r.native_ms.size())), 1e-12);
+  EXPECT_LE(r.speedup_low, r.speedup());
+  EXPECT_GE(r.speedup_high, r.speedup());
   EXPECT_GT(r.native_build_ms, 0.0);  // both trees were built, outside the timed frames
   EXPECT_GT(r.chosen_build_ms, 0.0);
 }
@@ -49,8 +60,12 @@ TEST(RenderVsNative, RefusedConfigurationAndBadOptionsThrow) {
   EXPECT_THROW(render_vs_native(scene, scene.cameras[0], AccelChoice::tuned(refused), tiny()),
                std::runtime_error);
   RenderVsNativeOptions none = tiny();
-  none.repeats = 0;
+  none.repeats = 1;  // an interval needs two rounds
   EXPECT_THROW(render_vs_native(scene, scene.cameras[0], AccelChoice::native(), none),
+               std::invalid_argument);
+  RenderVsNativeOptions capped_below = tiny();
+  capped_below.max_repeats = 2;
+  EXPECT_THROW(render_vs_native(scene, scene.cameras[0], AccelChoice::native(), capped_below),
                std::invalid_argument);
 }
 
