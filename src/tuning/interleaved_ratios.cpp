@@ -40,6 +40,26 @@ void mean_interval(const std::vector<double>& x, double& mean, double& half_widt
 
 }  // namespace
 
+RatioInterval paired_ratio(const InterleavedResult& result, int i, int j) {
+  const int count = static_cast<int>(result.costs.size());
+  if (i < 0 || j < 0 || i >= count || j >= count)
+    throw std::invalid_argument("paired_ratio: no candidate " + std::to_string(std::max(i, j)));
+  const std::vector<double>& a = result.costs[i];
+  const std::vector<double>& b = result.costs[j];
+  if (a.empty() || a.size() != b.size())
+    throw std::invalid_argument("paired_ratio: the candidates' rounds differ");
+  std::vector<double> logs;
+  for (size_t k = 0; k < a.size(); ++k) logs.push_back(std::log(a[k] / b[k]));
+  double mean = 0, half = 0;
+  mean_interval(logs, mean, half);
+  RatioInterval r;
+  r.ratio = std::exp(mean);
+  r.low = std::exp(mean - half);
+  r.high = std::exp(mean + half);
+  r.median_cost = median(a);
+  return r;
+}
+
 InterleavedResult measure_interleaved(int count, int reference,
                                       const std::function<double(int)>& measure,
                                       const InterleavedOptions& options) {
@@ -50,10 +70,9 @@ InterleavedResult measure_interleaved(int count, int reference,
       !(options.target_half_width > 0))
     throw std::invalid_argument(
         "measure_interleaved: need 2 <= min_rounds <= max_rounds and a positive target");
-  std::vector<std::vector<double>> costs(count), log_ratios(count);
   InterleavedResult result;
+  result.costs.resize(count);
   result.ratios.resize(count);
-  std::vector<double> round_cost(count);
   for (int round = 0; round < options.max_rounds; ++round) {
     for (int k = 0; k < count; ++k) {
       const int i = (k + round) % count;  // rotated: nobody always goes first
@@ -61,23 +80,14 @@ InterleavedResult measure_interleaved(int count, int reference,
       if (!(cost > 0) || !std::isfinite(cost))
         throw std::invalid_argument("measure_interleaved: candidate " + std::to_string(i) +
                                     " measured a cost of " + std::to_string(cost));
-      round_cost[i] = cost;
-      costs[i].push_back(cost);
+      result.costs[i].push_back(cost);
     }
-    for (int i = 0; i < count; ++i)
-      log_ratios[i].push_back(std::log(round_cost[i] / round_cost[reference]));
     result.rounds = round + 1;
     if (result.rounds < options.min_rounds) continue;
     bool all_within = true;
     for (int i = 0; i < count; ++i) {
-      double mean = 0, half = 0;
-      mean_interval(log_ratios[i], mean, half);
-      RatioInterval& r = result.ratios[i];
-      r.ratio = std::exp(mean);
-      r.low = std::exp(mean - half);
-      r.high = std::exp(mean + half);
-      r.median_cost = median(costs[i]);
-      all_within &= r.relative_half_width() <= options.target_half_width;
+      result.ratios[i] = paired_ratio(result, i, reference);
+      all_within &= result.ratios[i].relative_half_width() <= options.target_half_width;
     }
     if (all_within) {
       result.converged = true;

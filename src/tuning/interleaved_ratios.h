@@ -21,10 +21,15 @@ struct RatioInterval {
 };
 
 struct InterleavedResult {
-  std::vector<RatioInterval> ratios;  // one per candidate; the reference's is exactly 1
+  std::vector<RatioInterval> ratios;       // one per candidate; the reference's is exactly 1
+  std::vector<std::vector<double>> costs;  // per candidate, one cost per round
   int rounds = 0;
   bool converged = false;  // every interval within the target before the cap
 };
+
+// The paired ratio of candidate `i` to candidate `j` over the rounds of `result` (any two
+// candidates, not only against the reference), with its 95 % interval.
+RatioInterval paired_ratio(const InterleavedResult& result, int i, int j);
 
 struct InterleavedOptions {
   double target_half_width = 0.03;  // ±3 %

@@ -89,6 +89,21 @@ TEST(MeasureInterleaved, NoiseNeedsMoreRoundsAndTheCapStopsThem) {
   EXPECT_NEAR(enough.ratios[0].ratio, 2.0, 0.06);
 }
 
+TEST(MeasureInterleaved, AnyTwoCandidatesCompareOverTheSameRounds) {
+  const double base[3] = {10, 20, 5};
+  int calls = 0;
+  InterleavedResult r = measure_interleaved(3, 0, [&](int i) {
+    return base[i] * (1 + 0.1 * (calls++ / 3));  // the machine slows from round to round
+  });
+  ASSERT_EQ(r.costs.size(), 3u);
+  EXPECT_EQ(r.costs[1].size(), static_cast<size_t>(r.rounds));
+  const RatioInterval fast_over_slow = paired_ratio(r, 2, 1);
+  EXPECT_NEAR(fast_over_slow.ratio, 0.25, 1e-12);
+  EXPECT_NEAR(fast_over_slow.low, 0.25, 1e-12);
+  EXPECT_EQ(fast_over_slow.median_cost, r.ratios[2].median_cost);
+  EXPECT_THROW(paired_ratio(r, 0, 3), std::invalid_argument);
+}
+
 TEST(MeasureInterleaved, RefusesBadArgumentsAndBadCosts) {
   auto one = [](int) { return 1.0; };
   EXPECT_THROW(measure_interleaved(2, 2, one), std::invalid_argument);
