@@ -36,8 +36,11 @@ const std::map<std::string, std::optional<std::string>> kMpiEnvironment = {
     // intercepts and crashes MPI_Init (open-mpi/ompi#12819, #13069); it only speeds up RDMA
     // networks, which a test on one machine does not use.
     {"OMPI_MCA_memory", "^patcher"},
-    // In the sanitizer build: OpenMPI's own allocations live until exit (mpi_lsan.supp).
-    {"LSAN_OPTIONS", "suppressions=" TUNERAY_SOURCE_DIR "/tests/app/mpi_lsan.supp"},
+    // In the sanitizer build: OpenMPI leaks thousands of blocks at exit from components whose
+    // stacks LeakSanitizer cannot unwind ("<unknown module>"), so no suppression can name them.
+    // Leak checking stays on for our coordinator and workers in tuning_tests (EvalRanks), which
+    // run the same code without MPI.
+    {"ASAN_OPTIONS", "detect_leaks=0"},
 };
 
 std::vector<std::string> mpirun_args(int ranks, const std::vector<std::string>& eval_args) {
