@@ -49,9 +49,9 @@ std::string describe_node_cores(const std::vector<int>& node_ranks, const std::v
                                 const std::map<int, std::vector<int>>& split) {
   std::vector<int> ranks = node_ranks;
   std::sort(ranks.begin(), ranks.end());
-  std::string text =
-      fmt::format("{} rank{} on this node share {} core{}", ranks.size(),
-                  ranks.size() == 1 ? "" : "s", cores.size(), cores.size() == 1 ? "" : "s");
+  std::string text = fmt::format("{} rank{} on this node share{} {} core{}", ranks.size(),
+                                 ranks.size() == 1 ? "" : "s", ranks.size() == 1 ? "s" : "",
+                                 cores.size(), cores.size() == 1 ? "" : "s");
   size_t measuring = 0;
   for (int r : ranks) measuring += r != 0;
   if (measuring > cores.size())

@@ -318,6 +318,9 @@ TEST(RankCores, RankZeroCoordinatesAndTheWorkersSplitTheNode) {
   EXPECT_EQ(split[3], (std::vector<int>{0}));
   EXPECT_NE(describe_node_cores({1, 2, 3}, {0, 1}, split).find("share cores"), std::string::npos);
   EXPECT_EQ(core_list_text({0, 1, 2, 5, 7, 8}), "0-2,5,7-8");
+  // A node of rank 0 alone.
+  EXPECT_EQ(describe_node_cores({0}, {0, 1}, split_node_cores({0}, {0, 1})),
+            "1 rank on this node shares 2 cores: rank 0 coordinates (no core of its own)");
 }
 
 TEST(RankCores, ThisProcessHasCoresAndCanBePinnedToThem) {
