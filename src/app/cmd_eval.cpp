@@ -2,14 +2,20 @@
 // roofline, break-even) with report, CSV and plots.
 #include <fmt/core.h>
 
+#include <tbb/global_control.h>
+
 #include <iostream>
 #include <memory>
 
 #include "app/cli_parse.h"
 #include "app/commands.h"
 #include "bench/scene_paths.h"
+#include "tuner/hardware_signature.h"
+#include "tuning/eval_ranks.h"
 #include "tuning/eval_report.h"
 #include "tuning/eval_study.h"
+#include "tuning/mpi_ranks.h"
+#include "tuning/rank_cores.h"
 
 namespace tuneray {
 
@@ -28,9 +34,71 @@ struct EvalArgs {
   std::string scheduler = QualityOptions{}.wavefront ? "wavefront" : "tile";
   bool tuned_only = false;
   bool synthetic_costs = false;
+  bool mix_signatures = false;
   bool quiet = false;
   std::string command_line;
 };
+
+void print_eval_header(const EvalProfile& p, const EvalArgs& a) {
+  fmt::print(
+      "eval profile {}: {} scene(s), {} cameras x {} frames, {}x{} {} spp, {} repetitions, {} "
+      "scheduler, {}{} -> {}\n",
+      p.name, p.scenes.size(), p.cameras, p.iterations, p.width, p.height, p.spp, p.repetitions,
+      a.scheduler, p.native_in_space ? "backend tuned|native + BVH" : "tuned BVH only",
+      p.synthetic_costs ? ", SYNTHETIC costs" : "", a.out);
+}
+
+void write_report(const EvalResults& results, const EvalArgs& a) {
+  std::string report = write_eval_report(results, a.out, a.command_line);
+  fmt::print("wrote {}\n", report);
+}
+
+// Gives this rank its slice of the node's cores (rank_cores.h) and limits TBB to it; the
+// lowest rank of each node says how the node is split. A failure to pin is reported and the
+// rank runs unpinned.
+std::unique_ptr<tbb::global_control> pin_rank(MpiSession& mpi) {
+  const MpiSession::Node node = mpi.node();
+  const auto split = split_node_cores(node.ranks, node.cores);
+  if (!node.ranks.empty() && mpi.rank() == *std::min_element(node.ranks.begin(), node.ranks.end()))
+    fmt::print("{}\n", describe_node_cores(node.ranks, node.cores, split));
+  auto mine = split.find(mpi.rank());
+  if (mine == split.end()) return nullptr;
+  try {
+    pin_process(mine->second);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "tuneray eval: rank {}: {}; running unpinned\n", mpi.rank(), e.what());
+    return nullptr;
+  }
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                               mine->second.size());
+}
+
+// `mpirun -n N tuneray eval ...`: rank 0 coordinates and alone writes the database and the
+// report, the others measure (tuning/eval_ranks.h). Any failure ends every rank: a worker left
+// waiting for a coordinator that is gone would hang the job.
+int run_eval_on_ranks(const EvalProfile& p, const EvalArgs& a) {
+  MpiSession mpi;
+  std::unique_ptr<tbb::global_control> threads = pin_rank(mpi);
+  std::unique_ptr<RankTransport> transport = mpi.transport();
+  if (mpi.rank() != 0) {
+    run_eval_worker(p, *transport, tuner::hardware_signature());
+    return 0;
+  }
+  try {
+    print_eval_header(p, a);
+    fmt::print("{} ranks: rank 0 coordinates, {} measure\n", mpi.size(), mpi.size() - 1);
+    auto print = [&](const std::string& line) {
+      if (!a.quiet) std::cout << line << std::endl;
+    };
+    EvalResults results =
+        run_eval_coordinator(p, EvalPaths{a.out, a.db}, *transport, a.mix_signatures, print, print);
+    write_report(results, a);
+  } catch (const std::exception& e) {
+    std::cerr << "tuneray: error: " << e.what() << std::endl;
+    mpi.abort(1);
+  }
+  return 0;
+}
 
 int run_eval(const EvalArgs& a) {
   std::string scenes_dir = find_shared_scenes_dir(a.scenes_dir);
@@ -57,18 +125,25 @@ int run_eval(const EvalArgs& a) {
   p.native_in_space = !a.tuned_only;
   p.synthetic_costs = a.synthetic_costs;
 
-  fmt::print(
-      "eval profile {}: {} scene(s), {} cameras x {} frames, {}x{} {} spp, {} repetitions, {} "
-      "scheduler, {}{} -> {}\n",
-      p.name, p.scenes.size(), p.cameras, p.iterations, p.width, p.height, p.spp, p.repetitions,
-      a.scheduler, p.native_in_space ? "backend tuned|native + BVH" : "tuned BVH only",
-      p.synthetic_costs ? ", SYNTHETIC costs" : "", a.out);
-  EvalPaths paths{a.out, a.db};
-  EvalResults results = run_eval_study(p, paths, [&](const std::string& line) {
-    if (!a.quiet) std::cout << line << std::endl;
-  });
-  std::string report = write_eval_report(results, a.out, a.command_line);
-  fmt::print("wrote {}\n", report);
+  const int ranks = mpirun_world_size();
+  if (ranks > 1) {
+    if (!mpi_compiled_in())
+      throw std::invalid_argument(fmt::format(
+          "started by mpirun as {} processes, but this tuneray was built without MPI: each would "
+          "run the whole study into the same files (install libopenmpi-dev and reconfigure)",
+          ranks));
+    return run_eval_on_ranks(p, a);
+  }
+  print_eval_header(p, a);
+  EvalStudyOptions options;
+  options.mix_signatures = a.mix_signatures;
+  EvalResults results = run_eval_study(
+      p, EvalPaths{a.out, a.db},
+      [&](const std::string& line) {
+        if (!a.quiet) std::cout << line << std::endl;
+      },
+      options);
+  write_report(results, a);
   return 0;
 }
 
@@ -103,6 +178,9 @@ CommandAction add_eval_command(CLI::App& app) {
                 "Testing only: replace every measurement by a deterministic made-up cost of "
                 "(scene, camera, configuration); nothing is rendered and the figures mean nothing, "
                 "but reruns and resumed runs write byte-identical reports");
+  cmd->add_flag("--mix-signatures", a->mix_signatures,
+                "Accept samples measured on machines of another hardware signature (CPU model and "
+                "core count) in one study; without it the study refuses them");
   cmd->add_flag("--quiet,-q", a->quiet, "No per-camera lines");
   return [a, cmd] {
     a->command_line = "tuneray eval --profile " + a->profile + " --out " + a->out;

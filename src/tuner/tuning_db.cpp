@@ -239,6 +239,17 @@ std::optional<int64_t> TuningDb::find_signature(const std::string& tuning_key,
   return id;
 }
 
+std::vector<TuningDb::HardwareSamples> TuningDb::hardware_with_samples(
+    const std::string& tuning_key) {
+  auto& find = statement(
+      "SELECT g.id, g.hardware, COUNT(s.id) FROM signatures g JOIN samples s ON "
+      "s.signature_id=g.id WHERE g.tuning_key=?1 GROUP BY g.id ORDER BY g.id");
+  find.bind(1, tuning_key);
+  std::vector<HardwareSamples> rows;
+  while (find.step()) rows.push_back({find.integer(0), find.text(1), find.integer(2)});
+  return rows;
+}
+
 int64_t TuningDb::add_state(int64_t signature, const std::vector<double>& indicators) {
   TokenWriter text;
   text.put(indicators);

@@ -80,6 +80,15 @@ class TuningDb {
   // Id of an existing (tuning_key, hardware), nullopt if the file has none.
   std::optional<int64_t> find_signature(const std::string& tuning_key, const std::string& hardware);
 
+  // Every machine that recorded samples under `tuning_key` (rows without samples left out), in
+  // order of creation: a study checks that it does not mix machines' measurements.
+  struct HardwareSamples {
+    int64_t signature;
+    std::string hardware;
+    int64_t samples;
+  };
+  std::vector<HardwareSamples> hardware_with_samples(const std::string& tuning_key);
+
   int64_t add_state(int64_t signature, const std::vector<double>& indicators);
   std::vector<StoredState> states(int64_t signature);
   // Id of a configuration text, inserted if new.

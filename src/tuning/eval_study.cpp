@@ -6,16 +6,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numeric>
 #include <set>
 #include <sstream>
 
-#include "scene/camera_spline.h"
-#include "scene/indicators.h"
-#include "scene/load.h"
 #include "tuner/greedy_gq.h"
+#include "tuner/hardware_signature.h"
 #include "tuner/hybrid_tuner.h"
 #include "tuner/nearest_neighbour.h"
 #include "tuner/rng.h"
@@ -23,36 +22,49 @@
 #include "tuning/cost_log.h"
 #include "tuning/eval_costs.h"
 #include "tuning/eval_metrics.h"
+#include "tuning/eval_scene.h"
+#include "tuning/eval_search.h"
 #include "tuning/stats.h"
 #include "tuning/tuner_state.h"
 
 namespace tuneray {
 
-std::vector<CameraDesc> camera_positions(const Scene& scene, int path_index, int count);
-
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string scene_key(const std::string& spec) {
-  return fs::path(spec).stem().string();
-}
-
 // Live re-measurements: the median of `repeats` frames per (camera, configuration), kept in a
-// CSV beside the report so that an interrupted study does not measure them again.
+// CSV beside the report so that an interrupted study does not measure them again. In a plan
+// (MPI coordinator), a missing one is listed as work and reads as NaN.
 class LiveCosts {
  public:
-  LiveCosts(std::string path, std::string prefix)
-      : log_(std::move(path), prefix), prefix_(prefix) {}
+  LiveCosts(std::string path, std::string prefix, EvalPlan* plan, int scene, int objective)
+      : log_(std::move(path), prefix),
+        prefix_(prefix),
+        plan_(plan),
+        scene_(scene),
+        objective_(objective) {}
 
-  double get(EvalCostSource& costs, Objective objective, int camera_index,
+  double get(EvalCostSource* costs, Objective objective, int camera_index,
              const AccelChoice& config, int repeats) {
-    std::string key = fmt::format("{}\t{}\t{}", prefix_, camera_index, config.to_string());
-    if (auto known = log_.find(key)) return *known;
-    std::vector<double> ms;
-    for (int r = 0; r < repeats; ++r)
-      ms.push_back(costs.frame(config, camera_index).cost_ms(objective));
-    return log_.add(key, median(ms));
+    const std::string text = config.to_string();
+    if (auto known = log_.find(eval_live_key(prefix_, camera_index, text))) return *known;
+    if (plan_) {
+      std::vector<std::string>& measure = plan_->job(scene_, objective_, camera_index).measure;
+      if (std::find(measure.begin(), measure.end(), text) == measure.end()) measure.push_back(text);
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    return log_.add(eval_live_key(prefix_, camera_index, text),
+                    measure_live_ms(*costs, objective, camera_index, config, repeats));
+  }
+
+  // Configurations measured at one camera.
+  std::vector<std::string> known(int camera_index) const {
+    std::vector<std::string> configs;
+    const std::string head = fmt::format("{}\t{}\t", prefix_, camera_index);
+    for (const auto& [key, ms] : log_.entries())
+      if (key.compare(0, head.size(), head) == 0) configs.push_back(key.substr(head.size()));
+    return configs;
   }
 
   // Best (lowest) measured cost and its configuration for one camera.
@@ -67,93 +79,184 @@ class LiveCosts {
  private:
   CostLog log_;
   std::string prefix_;
+  EvalPlan* plan_;
+  int scene_, objective_;
 };
 
 struct SceneData {
-  std::vector<CameraDesc> cameras;
-  std::vector<tuner::State> states;
-  std::vector<std::vector<double>> normalised;
   // Per camera: every search sample (config text, cost in ms; failures already replaced).
   std::vector<std::vector<std::pair<std::string, double>>> samples;
   std::vector<tuner::Config> incumbents;  // per camera, the search's converged configuration
 };
 
+std::vector<std::string> unique_hardware(const std::vector<std::string>& hardware) {
+  std::vector<std::string> unique;
+  for (const std::string& h : hardware)
+    if (std::find(unique.begin(), unique.end(), h) == unique.end()) unique.push_back(h);
+  if (unique.empty()) unique.push_back(tuner::hardware_signature());
+  return unique;
+}
+
+// The machine whose samples a camera's search uses. Unmixed: the one measuring machine. Mixed:
+// a complete search of any machine (a measuring one first), else the measuring machine with the
+// most samples, else the first measuring machine.
+struct SearchSource {
+  std::string hardware;
+  size_t samples = 0;
+};
+SearchSource search_source(tuner::TuningDb& db, const std::string& key,
+                           const std::vector<std::string>& hardware, bool mix, int iterations) {
+  if (!mix) {
+    for (const auto& row : db.hardware_with_samples(key))
+      if (row.hardware == hardware.front()) return {row.hardware, static_cast<size_t>(row.samples)};
+    return {hardware.front(), 0};
+  }
+  const auto rows = db.hardware_with_samples(key);
+  auto measuring = [&](const std::string& h) {
+    return std::find(hardware.begin(), hardware.end(), h) != hardware.end();
+  };
+  std::optional<SearchSource> complete, partial;
+  for (const auto& row : rows) {
+    SearchSource s{row.hardware, static_cast<size_t>(row.samples)};
+    if (row.samples >= iterations) {
+      if (!complete || (measuring(row.hardware) && !measuring(complete->hardware))) complete = s;
+    } else if (measuring(row.hardware) &&
+               (!partial || row.samples > static_cast<int64_t>(partial->samples))) {
+      partial = s;
+    }
+  }
+  if (complete) return *complete;
+  if (partial) return *partial;
+  return {hardware.front(), 0};
+}
+
 }  // namespace
 
+EvalJob& EvalPlan::job(int scene, int objective, int camera) {
+  const std::array<int, 3> key{scene, objective, camera};
+  auto it = index_.find(key);
+  if (it != index_.end()) return jobs[it->second];
+  index_[key] = jobs.size();
+  EvalJob& j = jobs.emplace_back();
+  j.scene = scene;
+  j.objective = objective;
+  j.camera = camera;
+  return j;
+}
+
+std::string eval_db_path(const EvalPaths& paths) {
+  return paths.db_path.empty() ? (fs::path(paths.out_dir) / "eval.db").string() : paths.db_path;
+}
+
+std::string eval_live_costs_path(const EvalPaths& paths) {
+  return (fs::path(paths.out_dir) / "live_costs.tsv").string();
+}
+
+std::string eval_live_key(const std::string& run_key, int camera, const std::string& config) {
+  return fmt::format("{}\t{}\t{}", run_key, camera, config);
+}
+
+void check_eval_signatures(const EvalProfile& p, const std::string& db_path,
+                           const std::vector<std::string>& hardware, bool mix) {
+  if (mix) return;
+  const std::vector<std::string> measuring = unique_hardware(hardware);
+  if (measuring.size() > 1) {
+    std::string list;
+    for (const std::string& h : measuring) list += "\n  " + h;
+    throw EvalSignatureError(
+        "the ranks run on machines of different kinds:" + list +
+        "\nthe study would compare costs measured on different hardware; run on one "
+        "kind, or pass --mix-signatures to accept it");
+  }
+  if (!fs::exists(db_path)) return;
+  tuner::TuningDb db(db_path);
+  std::map<std::string, int64_t> foreign;  // hardware -> samples
+  for (const std::string& spec : p.scenes)
+    for (Objective objective : p.objectives) {
+      const std::string run_key = eval_run_key(p, eval_scene_name(spec), objective);
+      for (int ci = 0; ci < p.cameras; ++ci)
+        for (const auto& row : db.hardware_with_samples(eval_tuning_key(p, run_key, ci)))
+          if (row.hardware != measuring.front()) foreign[row.hardware] += row.samples;
+    }
+  if (foreign.empty()) return;
+  std::string list;
+  for (const auto& [h, n] : foreign) list += fmt::format("\n  {} ({} samples)", h, n);
+  throw EvalSignatureError(fmt::format(
+      "{} holds samples of this study measured on another machine:{}\nthis run measures on\n  "
+      "{}\nmixing them would compare costs of different hardware; use another --out or --db, or "
+      "pass --mix-signatures to accept it",
+      db_path, list, measuring.front()));
+}
+
 EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
-                           const std::function<void(const std::string&)>& log) {
+                           const std::function<void(const std::string&)>& log,
+                           const EvalStudyOptions& o) {
   fs::create_directories(paths.out_dir);
-  std::string db_path =
-      paths.db_path.empty() ? (fs::path(paths.out_dir) / "eval.db").string() : paths.db_path;
+  const std::string db_path = eval_db_path(paths);
+  const std::vector<std::string> hardware = unique_hardware(o.hardware);
+  check_eval_signatures(p, db_path, hardware, o.mix_signatures);
+  tuner::TuningDb db(db_path);
   EvalResults results;
   results.profile = p;
-  const tuner::Space space = p.native_in_space ? make_backend_space() : make_bvh_space();
+  const tuner::Space space = eval_space(p);
   const tuner::IndicatorSchema schema = make_indicator_schema();
 
-  for (const std::string& spec : p.scenes) {
-    LoadOptions load_options;
-    load_options.scenes_dir = p.scenes_dir;
-    Scene scene = load_scene(spec, load_options);
-    const std::string name = scene_key(spec);
+  for (size_t si = 0; si < p.scenes.size(); ++si) {
+    const std::unique_ptr<EvalScene> scene = load_eval_scene(p, p.scenes[si]);
+    const std::string& name = scene->name;
     SceneData data;
-    data.cameras = camera_positions(scene, 0, p.cameras);
-    SceneIndicators si = compute_scene_indicators(scene);
-    for (const CameraDesc& c : data.cameras) {
-      data.states.push_back(to_tuner_state(compute_indicators(si, c)));
-      data.normalised.push_back(schema.normalise(data.states.back()));
-    }
 
-    for (Objective objective : p.objectives) {
+    for (size_t oi = 0; oi < p.objectives.size(); ++oi) {
+      const Objective objective = p.objectives[oi];
       const std::string obj = to_string(objective);
-      // The scheduler is part of the key: costs on tiles and on waves do not compare.
-      // So are synthetic costs: they must never mix with measured ones.
-      const std::string run_key = fmt::format(
-          "{}/{}/{}x{}/{}spp/{}b/{}{}", name, obj, p.width, p.height, p.spp, p.max_bounces,
-          p.wavefront ? "wavefront" : "tile", p.synthetic_costs ? "/synthetic" : "");
-      RenderSettings settings;
-      settings.width = p.width;
-      settings.height = p.height;
-      settings.max_bounces = p.max_bounces;
-      settings.seed = p.seed;
-      settings.quality.wavefront = p.wavefront;
-      std::unique_ptr<EvalCostSource> costs =
-          p.synthetic_costs ? make_synthetic_costs(name, objective)
-                            : make_measured_costs(scene, settings, p.spp, objective, data.cameras);
+      const std::string run_key = eval_run_key(p, name, objective);
+      std::unique_ptr<EvalCostSource> costs;
+      if (!o.plan) costs = make_eval_costs(p, *scene, objective);
       const AccelChoice default_choice = AccelChoice::tuned(BvhConfig{});
       const AccelChoice native_choice = AccelChoice::native();
-      LiveCosts live((fs::path(paths.out_dir) / "live_costs.tsv").string(), run_key);
+      LiveCosts live(eval_live_costs_path(paths), run_key, o.plan, static_cast<int>(si),
+                     static_cast<int>(oi));
 
       // 1. A full search at every camera, each from the default configuration.
-      std::vector<CameraRecord> records(data.cameras.size());
-      data.samples.assign(data.cameras.size(), {});
-      data.incumbents.assign(data.cameras.size(), space.default_config());
-      for (size_t ci = 0; ci < data.cameras.size(); ++ci) {
-        tuner::TunerOptions options;
-        options.epsilon = 1.0;
-        options.seed = p.seed + ci;
-        options.search.max_iterations = p.iterations;
+      const size_t n_cameras = scene->cameras.size();
+      std::vector<CameraRecord> records(n_cameras);
+      data.samples.assign(n_cameras, {});
+      data.incumbents.assign(n_cameras, space.default_config());
+      bool searched_all = true;
+      for (size_t ci = 0; ci < n_cameras; ++ci) {
+        const int camera = static_cast<int>(ci);
+        tuner::TunerOptions options = eval_tuner_options(p, run_key, camera);
         options.db_path = db_path;
-        // The space is part of the key: the database refuses one key with two spaces.
-        options.tuning_key =
-            fmt::format("{}/{}/cam{}", p.native_in_space ? "eval+backend" : "eval", run_key, ci);
+        const SearchSource source =
+            search_source(db, options.tuning_key, hardware, o.mix_signatures, p.iterations);
+        options.hardware = source.hardware;
+        if (o.plan && source.samples < static_cast<size_t>(p.iterations)) {
+          // Left to another rank, which needs what is stored and what the live log holds.
+          EvalJob& job = o.plan->job(static_cast<int>(si), static_cast<int>(oi), camera);
+          job.search = true;
+          job.done_hardware = source.hardware;
+          if (source.samples > 0)
+            if (auto id = db.find_signature(options.tuning_key, source.hardware))
+              for (const tuner::StoredSample& s : db.samples(*id))
+                job.done.push_back(stored_frame(s));
+          live.get(nullptr, objective, camera, default_choice, p.measure_repeats);
+          live.get(nullptr, objective, camera, native_choice, p.measure_repeats);
+          job.known = live.known(camera);
+          searched_all = false;
+          continue;
+        }
         tuner::HybridTuner tuner(space, schema, options);
         int64_t signature = tuner.signature_id();
         size_t done = tuner.database()->samples(signature).size();
-        for (size_t k = done; k < static_cast<size_t>(p.iterations); ++k) {
-          tuner::Config c = tuner.suggest(data.states[ci]);
-          FrameCost cost = costs->frame(to_accel_choice(c), static_cast<int>(ci));
-          tuner::Extras extras = {{"build_ms", cost.build_ms}, {"render_ms", cost.render_ms}};
-          if (cost.ok)
-            tuner.report(c, cost.cost_ms(objective) / 1000.0, extras);
-          else
-            tuner.report_failure(c, extras);
-        }
+        for (size_t k = done; k < static_cast<size_t>(p.iterations); ++k)
+          measure_search_frame(tuner, scene->states[ci], *costs, objective, camera);
         CameraRecord& r = records[ci];
         r.scene = name;
         r.objective = obj;
-        r.camera = static_cast<int>(ci);
-        r.default_ms = live.get(*costs, objective, r.camera, default_choice, p.measure_repeats);
-        r.native_ms = live.get(*costs, objective, r.camera, native_choice, p.measure_repeats);
+        r.camera = camera;
+        r.default_ms =
+            live.get(costs.get(), objective, r.camera, default_choice, p.measure_repeats);
+        r.native_ms = live.get(costs.get(), objective, r.camera, native_choice, p.measure_repeats);
         for (const tuner::StoredSample& s : tuner.database()->samples(signature)) {
           // A refused build is counted as a frame rendered with the default tree.
           double ms = std::isfinite(s.cost) ? s.cost * 1000.0 : r.default_ms;
@@ -161,12 +264,12 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
           data.samples[ci].emplace_back(s.config, ms);
         }
         r.search_ms.resize(std::min(r.search_ms.size(), static_cast<size_t>(p.iterations)));
-        tuner::Config incumbent = tuner.best(data.states[ci]);
+        tuner::Config incumbent = tuner.best(scene->states[ci]);
         data.incumbents[ci] = incumbent;
-        if (auto summary = tuner.summary(data.states[ci])) r.converged = summary->converged;
+        if (auto summary = tuner.summary(scene->states[ci])) r.converged = summary->converged;
         r.converged_config = to_accel_choice(incumbent).to_string();
-        r.converged_ms =
-            live.get(*costs, objective, r.camera, to_accel_choice(incumbent), p.measure_repeats);
+        r.converged_ms = live.get(costs.get(), objective, r.camera, to_accel_choice(incumbent),
+                                  p.measure_repeats);
         if (log)
           log(fmt::format(
               "{:<14} {:<6} camera {:>3}: search {:3} frames, default {:8.2f} ms, native {:8.2f} "
@@ -174,9 +277,11 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
               name, obj, ci, r.search_ms.size(), r.default_ms, r.native_ms, r.converged_ms,
               r.search_speedup(), r.native_speedup()));
       }
+      // The predictors need every camera's search.
+      if (!searched_all) continue;
 
       // 2. Predictors trained on a random split, judged on the held-out cameras.
-      const size_t n = data.cameras.size();
+      const size_t n = n_cameras;
       const size_t n_train = std::clamp<size_t>(
           static_cast<size_t>(std::lround(p.train_fraction * n)), 1, n > 1 ? n - 1 : 1);
       std::vector<PredictionRecord> predictions;
@@ -198,9 +303,9 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         for (size_t t = 0; t < n_train; ++t) {
           size_t ci = order[t];
           const tuner::Config& best = data.incumbents[ci];
-          nn.set_best(static_cast<int64_t>(ci), data.normalised[ci], best);
+          nn.set_best(static_cast<int64_t>(ci), scene->normalised[ci], best);
           for (const auto& [config, ms] : data.samples[ci])
-            gq.train(data.normalised[ci], space.encode(space.parse(config)),
+            gq.train(scene->normalised[ci], space.encode(space.parse(config)),
                      tuner::GreedyGqPredictor::reward(tuner::RewardKind::kNegLog, ms / 1000.0,
                                                       worst / 1000.0));
           if (seen.insert(best.to_string()).second) {
@@ -211,8 +316,8 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         for (size_t v = n_train; v < n; ++v) {
           size_t ci = order[v];
           std::vector<std::pair<std::string, tuner::Config>> picks;
-          if (auto pred = nn.predict(data.normalised[ci])) picks.emplace_back("nn", pred->config);
-          if (auto idx = gq.best_candidate(data.normalised[ci], candidate_points))
+          if (auto pred = nn.predict(scene->normalised[ci])) picks.emplace_back("nn", pred->config);
+          if (auto idx = gq.best_candidate(scene->normalised[ci], candidate_points))
             picks.emplace_back("rbf", candidates[*idx]);
           for (const auto& [predictor, config] : picks) {
             PredictionRecord pr;
@@ -223,7 +328,8 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
             pr.predictor = predictor;
             AccelChoice choice = to_accel_choice(config);
             pr.config = choice.to_string();
-            pr.predicted_ms = live.get(*costs, objective, pr.camera, choice, p.measure_repeats);
+            pr.predicted_ms =
+                live.get(costs.get(), objective, pr.camera, choice, p.measure_repeats);
             predictions.push_back(pr);
           }
         }

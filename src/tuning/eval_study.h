@@ -3,10 +3,14 @@
 // trained on a random 80 % of the cameras and judged on the other 20 %, repeated.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "tuning/eval_job.h"
 #include "tuning/eval_profile.h"
 
 namespace tuneray {
@@ -56,8 +60,49 @@ struct EvalPaths {
   std::string db_path;  // tuning database (search data); default out_dir/eval.db
 };
 
+// What a study still lacks, as jobs for other ranks (one per camera).
+struct EvalPlan {
+  std::vector<EvalJob> jobs;
+  EvalJob& job(int scene, int objective, int camera);
+
+ private:
+  std::map<std::array<int, 3>, size_t> index_;
+};
+
+// The study found samples of another machine, or ranks of several machines, and was not told
+// to mix them.
+class EvalSignatureError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct EvalStudyOptions {
+  // Hardware signatures of the ranks that measure, first = preferred (empty: this machine's).
+  std::vector<std::string> hardware;
+  // Accept samples of several signatures: a complete search of another machine is then used as
+  // it is, an incomplete one is restarted on a measuring machine. Otherwise the study refuses.
+  bool mix_signatures = false;
+  // When set, nothing is measured: every search the database lacks and every live cost the log
+  // lacks is added here instead, and the results hold only what was complete (all of it when
+  // the plan stays empty).
+  EvalPlan* plan = nullptr;
+};
+
 // Runs (or resumes) the study. `log` receives progress lines.
 EvalResults run_eval_study(const EvalProfile& profile, const EvalPaths& paths,
-                           const std::function<void(const std::string&)>& log);
+                           const std::function<void(const std::string&)>& log,
+                           const EvalStudyOptions& options = {});
+
+// The tuning database the study uses (paths.db_path, or eval.db in the output folder) and the
+// live cost log.
+std::string eval_db_path(const EvalPaths& paths);
+std::string eval_live_costs_path(const EvalPaths& paths);
+// Key of a live cost in the log.
+std::string eval_live_key(const std::string& run_key, int camera, const std::string& config);
+
+// Throws EvalSignatureError unless `mix` or every sample of the study in `db_path` was measured
+// on the only machine of `hardware`.
+void check_eval_signatures(const EvalProfile& p, const std::string& db_path,
+                           const std::vector<std::string>& hardware, bool mix);
 
 }  // namespace tuneray

@@ -19,12 +19,16 @@
 #include <thread>
 
 #include "command_test.h"
+#include "report_files.h"
 #include "run_command.h"
 
 namespace tuneray {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::differences;
+using testing::read_all;
+using testing::report_files;
 using Clock = std::chrono::steady_clock;
 using Seconds = std::chrono::duration<double>;
 
@@ -73,41 +77,6 @@ Outcome run_killed_after(const std::vector<std::string>& args, Seconds kill_afte
   else
     outcome.exit_code = WEXITSTATUS(status);
   return outcome;
-}
-
-std::string read_all(const fs::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-// The report: every file eval writes for people (report.md, CSV, plot data, scripts and
-// images), by path. Left out: the working state it resumes from (the database and the live cost
-// log, whose bytes may differ after kills while meaning the same) and the temporary file of a
-// write that a kill interrupted (hidden, never renamed over anything).
-std::map<std::string, std::string> report_files(const fs::path& out) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(out)) {
-    if (!entry.is_regular_file()) continue;
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("eval.db", 0) == 0 || name == "live_costs.tsv" ||
-        name.find(".partial-") != std::string::npos)
-      continue;
-    files[fs::relative(entry.path(), out).string()] = read_all(entry.path());
-  }
-  return files;
-}
-
-// Names of the files that differ between two reports (missing on either side included).
-std::string differences(const std::map<std::string, std::string>& expected,
-                        const std::map<std::string, std::string>& actual) {
-  std::string names;
-  for (const auto& [name, bytes] : expected) {
-    auto it = actual.find(name);
-    if (it == actual.end() || it->second != bytes) names += " " + name;
-  }
-  for (const auto& [name, bytes] : actual)
-    if (!expected.count(name)) names += " " + name + "(extra)";
-  return names;
 }
 
 // A gnuplot orphaned by a kill may still be drawing into its own temporary file in `out`: retry

@@ -161,6 +161,30 @@ TEST(TuningDb, TuningKeysShareAFileWithoutMixing) {
   EXPECT_THROW(HybridTuner(other, kernel_schema(), render), TuningDbError);
 }
 
+TEST(TuningDb, ListsTheMachinesThatRecordedSamplesOfAKey) {
+  TempPath path("machines.db");
+  TunerOptions here = db_options(path.str());
+  TunerOptions there = db_options(path.str());
+  there.hardware = "other-cpu x64";
+  TunerOptions idle = db_options(path.str());
+  idle.hardware = "idle-cpu x1";
+  {
+    HybridTuner a(kernel_space(), kernel_schema(), here);
+    run_schedule(a, 0, 4);
+    HybridTuner b(kernel_space(), kernel_schema(), there);
+    run_schedule(b, 0, 2);
+    HybridTuner c(kernel_space(), kernel_schema(), idle);  // opened, never reported
+  }
+  TuningDb db(path.str());
+  const auto rows = db.hardware_with_samples(here.tuning_key);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].hardware, "test-cpu x2");
+  EXPECT_EQ(rows[0].samples, 4);
+  EXPECT_EQ(rows[1].hardware, "other-cpu x64");
+  EXPECT_EQ(rows[1].samples, 2);
+  EXPECT_TRUE(db.hardware_with_samples("no/such/key").empty());
+}
+
 TEST(TuningDb, RefusesForeignAndCorruptFilesWithoutTouchingThem) {
   TempPath text_file("not_a_db.txt");
   {

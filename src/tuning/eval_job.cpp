@@ -1,0 +1,134 @@
+#include "tuning/eval_job.h"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "tuner/hybrid_tuner.h"
+#include "tuning/accel_choice.h"
+#include "tuning/bvh_space.h"
+#include "tuning/tuner_state.h"
+
+namespace tuneray {
+
+namespace {
+
+using nlohmann::json;
+
+json frames_json(const std::vector<EvalFrame>& frames) {
+  json a = json::array();
+  for (const EvalFrame& f : frames)
+    a.push_back({{"config", f.config},
+                 {"ok", f.ok},
+                 {"cost_s", f.cost_s},
+                 {"build_ms", f.build_ms},
+                 {"render_ms", f.render_ms}});
+  return a;
+}
+
+std::vector<EvalFrame> parse_frames(const json& a) {
+  std::vector<EvalFrame> frames;
+  for (const json& f : a.at("frames"))
+    frames.push_back({f.at("config").get<std::string>(), f.at("ok").get<bool>(),
+                      f.at("cost_s").get<double>(), f.at("build_ms").get<double>(),
+                      f.at("render_ms").get<double>()});
+  return frames;
+}
+
+template <typename Parse>
+auto parse_or_throw(const std::string& text, const char* what, Parse parse) {
+  try {
+    return parse(json::parse(text));
+  } catch (const json::exception& e) {
+    throw std::runtime_error(std::string("malformed ") + what + " message: " + e.what());
+  }
+}
+
+}  // namespace
+
+std::string to_json(const EvalJob& job) {
+  return json{{"scene", job.scene},
+              {"objective", job.objective},
+              {"camera", job.camera},
+              {"search", job.search},
+              {"done_hardware", job.done_hardware},
+              {"frames", frames_json(job.done)},
+              {"measure", job.measure},
+              {"known", job.known}}
+      .dump();
+}
+
+std::string to_json(const EvalJobResult& r) {
+  json live = json::array();
+  for (const auto& [config, ms] : r.live) live.push_back({config, ms});
+  return json{{"scene", r.scene},       {"objective", r.objective},        {"camera", r.camera},
+              {"hardware", r.hardware}, {"frames", frames_json(r.frames)}, {"live", live}}
+      .dump();
+}
+
+EvalJob parse_eval_job(const std::string& text) {
+  return parse_or_throw(text, "job", [](const json& j) {
+    EvalJob job;
+    job.scene = j.at("scene").get<int>();
+    job.objective = j.at("objective").get<int>();
+    job.camera = j.at("camera").get<int>();
+    job.search = j.at("search").get<bool>();
+    job.done_hardware = j.at("done_hardware").get<std::string>();
+    job.done = parse_frames(j);
+    job.measure = j.at("measure").get<std::vector<std::string>>();
+    job.known = j.at("known").get<std::vector<std::string>>();
+    return job;
+  });
+}
+
+EvalJobResult parse_eval_job_result(const std::string& text) {
+  return parse_or_throw(text, "result", [](const json& j) {
+    EvalJobResult r;
+    r.scene = j.at("scene").get<int>();
+    r.objective = j.at("objective").get<int>();
+    r.camera = j.at("camera").get<int>();
+    r.hardware = j.at("hardware").get<std::string>();
+    r.frames = parse_frames(j);
+    for (const json& e : j.at("live"))
+      r.live.emplace_back(e.at(0).get<std::string>(), e.at(1).get<double>());
+    return r;
+  });
+}
+
+EvalJobResult run_eval_job(const EvalProfile& p, const EvalScene& scene, EvalCostSource& costs,
+                           const EvalJob& job, const std::string& hardware) {
+  if (job.objective < 0 || job.objective >= static_cast<int>(p.objectives.size()) ||
+      job.camera < 0 || job.camera >= static_cast<int>(scene.states.size()))
+    throw std::runtime_error("job out of the profile's range");
+  const Objective objective = p.objectives[static_cast<size_t>(job.objective)];
+  EvalJobResult r;
+  r.scene = job.scene;
+  r.objective = job.objective;
+  r.camera = job.camera;
+  r.hardware = hardware;
+  std::vector<std::string> to_measure = job.measure;
+  if (job.search) {
+    const std::string run_key = eval_run_key(p, scene.name, objective);
+    tuner::HybridTuner tuner(eval_space(p), make_indicator_schema(),
+                             eval_tuner_options(p, run_key, job.camera));
+    const tuner::State& state = scene.states[static_cast<size_t>(job.camera)];
+    if (job.done_hardware == hardware)
+      for (const EvalFrame& frame : job.done) {
+        replay_search_frame(tuner, state, frame);
+        r.frames.push_back(frame);
+      }
+    while (r.frames.size() < static_cast<size_t>(p.iterations))
+      r.frames.push_back(measure_search_frame(tuner, state, costs, objective, job.camera));
+    const std::string incumbent = to_accel_choice(tuner.best(state)).to_string();
+    auto has = [&](const std::vector<std::string>& v) {
+      return std::find(v.begin(), v.end(), incumbent) != v.end();
+    };
+    if (!has(job.known) && !has(to_measure)) to_measure.push_back(incumbent);
+  }
+  for (const std::string& config : to_measure)
+    r.live.emplace_back(config, measure_live_ms(costs, objective, job.camera,
+                                                parse_accel_choice(config), p.measure_repeats));
+  return r;
+}
+
+}  // namespace tuneray

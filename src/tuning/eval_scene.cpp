@@ -1,0 +1,40 @@
+#include "tuning/eval_scene.h"
+
+#include "scene/indicators.h"
+#include "scene/load.h"
+#include "tuning/eval_search.h"
+#include "tuning/tuner_state.h"
+
+namespace tuneray {
+
+std::vector<CameraDesc> camera_positions(const Scene& scene, int path_index, int count);
+
+std::unique_ptr<EvalScene> load_eval_scene(const EvalProfile& p, const std::string& spec) {
+  LoadOptions load_options;
+  load_options.scenes_dir = p.scenes_dir;
+  auto s = std::make_unique<EvalScene>();
+  s->name = eval_scene_name(spec);
+  s->scene = load_scene(spec, load_options);
+  s->cameras = camera_positions(s->scene, 0, p.cameras);
+  const tuner::IndicatorSchema schema = make_indicator_schema();
+  SceneIndicators si = compute_scene_indicators(s->scene);
+  for (const CameraDesc& c : s->cameras) {
+    s->states.push_back(to_tuner_state(compute_indicators(si, c)));
+    s->normalised.push_back(schema.normalise(s->states.back()));
+  }
+  return s;
+}
+
+std::unique_ptr<EvalCostSource> make_eval_costs(const EvalProfile& p, const EvalScene& scene,
+                                                Objective objective) {
+  if (p.synthetic_costs) return make_synthetic_costs(scene.name, objective);
+  RenderSettings settings;
+  settings.width = p.width;
+  settings.height = p.height;
+  settings.max_bounces = p.max_bounces;
+  settings.seed = p.seed;
+  settings.quality.wavefront = p.wavefront;
+  return make_measured_costs(scene.scene, settings, p.spp, objective, scene.cameras);
+}
+
+}  // namespace tuneray
