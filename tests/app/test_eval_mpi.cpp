@@ -13,7 +13,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -59,11 +58,24 @@ std::vector<std::string> mpirun_args(int ranks, const std::vector<std::string>& 
 }
 
 // (scene objective camera) of every stored job with search frames, from rank 0's progress lines.
+// Parsed by hand: std::regex trips GCC 12's -Wmaybe-uninitialized in the sanitizer build.
 std::set<std::string> stored_searches(const std::string& log) {
   std::set<std::string> searches;
-  static const std::regex line(R"(stored; rank \d+: (\S+ \S+ camera \d+), (\d+) search frames)");
-  for (std::sregex_iterator it(log.begin(), log.end(), line), end; it != end; ++it)
-    if (std::stoi((*it)[2]) > 0) searches.insert((*it)[1]);
+  std::istringstream lines(log);
+  std::string line;
+  const std::string marker = "stored; rank ", frames = " search frames";
+  while (std::getline(lines, line)) {
+    const size_t start = line.find(marker);
+    if (start == std::string::npos) continue;
+    const size_t job = line.find(": ", start);
+    const size_t comma = line.find(", ", job == std::string::npos ? start : job);
+    const size_t end = line.find(frames, comma == std::string::npos ? start : comma);
+    if (job == std::string::npos || comma == std::string::npos || end == std::string::npos)
+      continue;
+    // "SCENE OBJECTIVE camera N", then the frame count.
+    const std::string name = line.substr(job + 2, comma - job - 2);
+    if (std::stoi(line.substr(comma + 2, end - comma - 2)) > 0) searches.insert(name);
+  }
   return searches;
 }
 
