@@ -228,36 +228,31 @@ TEST_F(EvalRanks, RefusesADatabaseWithSamplesOfAnotherMachineUnlessTold) {
   expect_same_results(sequential(p), run_eval_study(p, paths("study"), nullptr, here));
 }
 
-TEST_F(EvalRanks, AWorkersFailureNamesTheRankAndEndsTheRun) {
+// What a worker answers a job with, `job_text` sent after its hello (it stops after an error).
+RankMessage worker_answer(const EvalProfile& p, const std::string& job_text) {
   FakeRanks ranks(2);
-  const EvalProfile p = small_profile();
   std::thread worker([&] {
     auto t = ranks.transport(1);
     run_eval_worker(p, *t, "test-cpu x2");
   });
   auto coordinator = ranks.transport(0);
   EXPECT_EQ(coordinator->receive().tag, RankTag::kHello);
-  coordinator->send(1, RankTag::kJob, "{not json");
+  coordinator->send(1, RankTag::kJob, job_text);
   const RankMessage m = coordinator->receive();
   worker.join();  // the worker stopped after reporting
+  return m;
+}
+
+TEST_F(EvalRanks, AWorkersFailureNamesTheRankAndEndsTheRun) {
+  const RankMessage m = worker_answer(small_profile(), "{not json");
   EXPECT_EQ(m.tag, RankTag::kError);
   EXPECT_NE(m.body.find("malformed job"), std::string::npos) << m.body;
 }
 
 TEST_F(EvalRanks, AJobOutsideTheProfileIsAnError) {
-  FakeRanks ranks(2);
-  const EvalProfile p = small_profile();
-  std::thread worker([&] {
-    auto t = ranks.transport(1);
-    run_eval_worker(p, *t, "test-cpu x2");
-  });
-  auto coordinator = ranks.transport(0);
-  coordinator->receive();
   EvalJob job;
   job.scene = 7;
-  coordinator->send(1, RankTag::kJob, to_json(job));
-  const RankMessage m = coordinator->receive();
-  worker.join();
+  const RankMessage m = worker_answer(small_profile(), to_json(job));
   EXPECT_EQ(m.tag, RankTag::kError);
   EXPECT_NE(m.body.find("not in the profile"), std::string::npos) << m.body;
 }
