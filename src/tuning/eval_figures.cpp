@@ -117,12 +117,13 @@ void write_trace(const EvalResults& r, const std::string& scene, const std::stri
     if (c.scene == scene && c.objective == objective) cameras.push_back(&c);
   std::sort(cameras.begin(), cameras.end(),
             [](const CameraRecord* a, const CameraRecord* b) { return a->camera < b->camera; });
+  std::map<std::pair<int, std::string>, double> first_repetition;  // (camera, predictor) -> ms
+  for (const PredictionRecord& p : r.predictions)
+    if (p.scene == scene && p.objective == objective && p.repetition == 0)
+      first_repetition[{p.camera, p.predictor}] = p.predicted_ms;
   auto prediction = [&](int camera, const char* predictor) {
-    for (const PredictionRecord& p : r.predictions)
-      if (p.scene == scene && p.objective == objective && p.repetition == 0 && p.camera == camera &&
-          p.predictor == predictor)
-        return p.predicted_ms;
-    return 0.0;
+    auto it = first_repetition.find({camera, std::string(predictor)});
+    return it == first_repetition.end() ? 0.0 : it->second;
   };
   const std::string stem = trace_figure_stem(scene, objective);
   auto d = open_out(dir / (stem + ".dat"));

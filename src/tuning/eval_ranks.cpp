@@ -66,11 +66,9 @@ std::string mixed_ranks_message(const std::vector<std::string>& hardware_by_rank
     std::string& list = ranks[hardware_by_rank[rank]];
     list += (list.empty() ? "" : ", ") + std::to_string(rank);
   }
-  std::string text = "the ranks run on machines of different kinds:";
-  for (const auto& [h, list] : ranks) text += fmt::format("\n  {} (ranks {})", h, list);
-  return text +
-         "\nthe study would compare costs measured on different hardware; run on one kind, or "
-         "pass --mix-signatures to accept it";
+  std::vector<std::string> machines;
+  for (const auto& [h, list] : ranks) machines.push_back(fmt::format("{} (ranks {})", h, list));
+  return mixed_machines_message(machines);
 }
 
 void stop_workers(RankTransport& transport) {

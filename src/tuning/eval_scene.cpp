@@ -28,13 +28,9 @@ std::unique_ptr<EvalScene> load_eval_scene(const EvalProfile& p, const std::stri
 std::unique_ptr<EvalCostSource> make_eval_costs(const EvalProfile& p, const EvalScene& scene,
                                                 Objective objective) {
   if (p.synthetic_costs) return make_synthetic_costs(scene.name, objective);
-  RenderSettings settings;
-  settings.width = p.width;
-  settings.height = p.height;
-  settings.max_bounces = p.max_bounces;
-  settings.seed = p.seed;
-  settings.quality.wavefront = p.wavefront;
-  return make_measured_costs(scene.scene, settings, p.spp, objective, scene.cameras);
+  return make_measured_costs(scene.scene,
+                             frame_settings(p.width, p.height, p.max_bounces, p.seed, p.wavefront),
+                             p.spp, objective, scene.cameras);
 }
 
 }  // namespace tuneray

@@ -156,18 +156,19 @@ std::string eval_live_key(const std::string& run_key, int camera, const std::str
   return fmt::format("{}\t{}\t{}", run_key, camera, config);
 }
 
+std::string mixed_machines_message(const std::vector<std::string>& machines) {
+  std::string text = "the ranks run on machines of different kinds:";
+  for (const std::string& m : machines) text += "\n  " + m;
+  return text +
+         "\nthe study would compare costs measured on different hardware; run on one kind, or "
+         "pass --mix-signatures to accept it";
+}
+
 void check_eval_signatures(const EvalProfile& p, const std::string& db_path,
                            const std::vector<std::string>& hardware, bool mix) {
   if (mix) return;
   const std::vector<std::string> measuring = unique_hardware(hardware);
-  if (measuring.size() > 1) {
-    std::string list;
-    for (const std::string& h : measuring) list += "\n  " + h;
-    throw EvalSignatureError(
-        "the ranks run on machines of different kinds:" + list +
-        "\nthe study would compare costs measured on different hardware; run on one "
-        "kind, or pass --mix-signatures to accept it");
-  }
+  if (measuring.size() > 1) throw EvalSignatureError(mixed_machines_message(measuring));
   if (!fs::exists(db_path)) return;
   tuner::TuningDb db(db_path);
   std::map<std::string, int64_t> foreign;  // hardware -> samples

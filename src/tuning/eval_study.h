@@ -100,6 +100,9 @@ std::string eval_live_costs_path(const EvalPaths& paths);
 // Key of a live cost in the log.
 std::string eval_live_key(const std::string& run_key, int camera, const std::string& config);
 
+// The refusal of a study whose ranks run on several kinds of machine, one line per machine.
+std::string mixed_machines_message(const std::vector<std::string>& machines);
+
 // Throws EvalSignatureError unless `mix` or every sample of the study in `db_path` was measured
 // on the only machine of `hardware`.
 void check_eval_signatures(const EvalProfile& p, const std::string& db_path,

@@ -15,6 +15,17 @@ const char* to_string(Objective objective) {
   return objective == Objective::kRender ? "render" : "total";
 }
 
+RenderSettings frame_settings(int width, int height, int max_bounces, uint64_t seed,
+                              bool wavefront) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  s.max_bounces = max_bounces;
+  s.seed = seed;
+  s.quality.wavefront = wavefront;
+  return s;
+}
+
 double FrameCost::cost_ms(Objective objective) const {
   if (!ok) return std::numeric_limits<double>::infinity();
   return objective == Objective::kRender ? render_ms : build_ms + render_ms;

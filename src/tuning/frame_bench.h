@@ -30,6 +30,11 @@ enum class Objective {
 Objective parse_objective(const std::string& text);  // "render" | "total"
 const char* to_string(Objective objective);
 
+// The settings of a measured frame: size, path length, seed and scheduler as given, every other
+// setting at its default (what tune, eval and the render-level comparison all measure).
+RenderSettings frame_settings(int width, int height, int max_bounces, uint64_t seed,
+                              bool wavefront);
+
 struct FrameCost {
   bool ok = true;  // false: the build was refused (error says why)
   bool rebuilt = false;

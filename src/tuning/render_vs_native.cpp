@@ -19,13 +19,7 @@ namespace tuneray {
 namespace {
 
 RenderSettings settings_of(const RenderVsNativeOptions& o) {
-  RenderSettings s;
-  s.width = o.width;
-  s.height = o.height;
-  s.max_bounces = o.max_bounces;
-  s.seed = o.seed;
-  s.quality.wavefront = o.wavefront;
-  return s;
+  return frame_settings(o.width, o.height, o.max_bounces, o.seed, o.wavefront);
 }
 
 }  // namespace

@@ -67,12 +67,8 @@ TuneReport run_tune_session(const TuneOptions& o,
   options.db_path = o.db_path;
   options.tuning_key = tuning_key(o);
 
-  RenderSettings settings;
-  settings.width = o.width;
-  settings.height = o.height;
-  settings.max_bounces = o.max_bounces;
-  settings.seed = o.seed;
-  settings.quality.wavefront = o.wavefront;
+  const RenderSettings settings =
+      frame_settings(o.width, o.height, o.max_bounces, o.seed, o.wavefront);
   const tuner::Space space = make_tune_space(o, settings);
   options.search_seeds = tuning_seeds(space, o.objective == Objective::kTotal);
   tuner::HybridTuner tuner(space, make_indicator_schema(), options);
