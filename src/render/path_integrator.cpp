@@ -65,6 +65,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
     : scene_(scene),
       accel_(accel),
       settings_(settings),
+      geometry_(scene),
       environment_(scene.environment,
                    EnvironmentOptions{settings.quality.sky_rgba, settings.quality.lowres_sky}),
       lights_(scene, environment_) {}
@@ -141,7 +142,7 @@ void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& s
     return;
   }
 
-  SurfaceInteraction si = make_interaction(scene_, hit);
+  SurfaceInteraction si = geometry_.interaction(hit);
   Vec3f wo_world = -ray.dir;
   if (si.material->is_emissive()) {
     Color le = lights_.emitted(si.prim, si.geometric_normal, wo_world);

@@ -13,6 +13,7 @@
 #include "render/light_sampler.h"
 #include "render/render_settings.h"
 #include "render/sampler.h"
+#include "render/shading_geometry.h"
 #include "render/surface.h"
 #include "scene/scene.h"
 
@@ -74,9 +75,10 @@ class PathIntegrator {
   // calls step 0 far ahead and step 1 nearer.
   void prefetch_hit(const Hit& hit, int step) const {
     if (!hit.valid()) return;
-    if (step == 0)
+    if (step == 0) {
       prefetch_hit_triangle(scene_, hit.prim);
-    else
+      geometry_.prefetch(hit.prim);
+    } else
       prefetch_hit_vertices(scene_, hit.prim);
   }
 
@@ -90,6 +92,7 @@ class PathIntegrator {
   const Scene& scene_;
   const Accel& accel_;
   RenderSettings settings_;
+  ShadingGeometry geometry_;
   EnvironmentLight environment_;
   LightSampler lights_;
 };

@@ -23,15 +23,15 @@ struct SurfaceInteraction {
   const Material* material = nullptr;
 };
 
+// Everything computed at the hit (the reference for ShadingGeometry, which the integrator uses).
 SurfaceInteraction make_interaction(const Scene& scene, const Hit& hit);
 
-// What make_interaction reads lies in five arrays at random places for incoherent hits, so a
+// What an interaction reads lies in several arrays at random places for incoherent hits, so a
 // batch of hits waits on memory hit after hit. A scheduler that knows the hits ahead prefetches
-// in two steps: first the triangle's vertex indices and material id, then (once the indices have
-// arrived) the vertices' positions, normals and UVs.
+// in two steps: first the triangle's vertex indices (and its ShadingGeometry record), then (once
+// the indices have arrived) the vertices' positions, normals and UVs.
 inline void prefetch_hit_triangle(const Scene& scene, uint32_t prim) {
   _mm_prefetch(reinterpret_cast<const char*>(&scene.triangles[prim]), _MM_HINT_T0);
-  _mm_prefetch(reinterpret_cast<const char*>(&scene.material_ids[prim]), _MM_HINT_T0);
 }
 inline void prefetch_hit_vertices(const Scene& scene, uint32_t prim) {
   const Triangle& t = scene.triangles[prim];
