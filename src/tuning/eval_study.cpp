@@ -105,15 +105,15 @@ PredictionRecord prediction_record(const EvalProfile& p, const CameraRecord& r,
   return pr;
 }
 
-std::string camera_line(const CameraRecord& r, const EvalProfile& p) {
+std::string comparison_line(const CameraRecord& r, const EvalProfile& p) {
   auto interval = [](const RatioInterval& x) {
     return fmt::format("{:.3f}x [{:.3f}, {:.3f}]", x.ratio, x.low, x.high);
   };
   return fmt::format(
-      "{:<14} {:<6} camera {:>3}: search {:3} frames; {} configurations compared in {} rounds "
-      "({}): default {:8.2f} ms, native {:8.2f} ms, converged {:8.2f} ms ({} default, {} "
-      "native), best known {:8.2f} ms",
-      r.scene, r.objective, r.camera, r.search_ms.size(), r.candidates, r.rounds,
+      "{:<14} {:<6} camera {:>3}: {} configurations compared in {} rounds ({}): default {:8.2f} "
+      "ms, native {:8.2f} ms, converged {:8.2f} ms ({} default, {} native), best known {:8.2f} "
+      "ms",
+      r.scene, r.objective, r.camera, r.candidates, r.rounds,
       r.within_target ? fmt::format("within ±{:g} %", 100 * p.compare_target) : "cap reached",
       r.default_ms, r.native_ms, r.converged_ms, interval(r.search_speedup),
       interval(r.native_speedup), r.best_ms);
@@ -280,6 +280,10 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         r.search_ms.resize(std::min(r.search_ms.size(), static_cast<size_t>(p.iterations)));
         if (auto summary = tuner.summary(scene->states[ci])) r.converged = summary->converged;
         r.converged_config = to_accel_choice(incumbent).to_string();
+        if (log)
+          log(fmt::format("{:<14} {:<6} camera {:>3}: search {:3} frames, {} {}", name, r.objective,
+                          camera, r.search_ms.size(), r.converged ? "converged to" : "stopped at",
+                          r.converged_config));
       }
       // The predictors need every camera's search.
       if (!searched_all) continue;
@@ -314,7 +318,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
               measure_comparison(*costs, objective, camera, configs, comparison_options(p)));
         }
         add_comparison(r, comparisons[ci]);
-        if (log) log(camera_line(r, p));
+        if (log) log(comparison_line(r, p));
       }
       if (!compared_all) continue;
 
