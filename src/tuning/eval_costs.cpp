@@ -5,8 +5,6 @@
 #include <cmath>
 #include <cstdint>
 
-#include "tuning/stats.h"
-
 namespace tuneray {
 
 namespace {
@@ -78,14 +76,6 @@ std::unique_ptr<EvalCostSource> make_measured_costs(const Scene& scene,
                                                     Objective objective,
                                                     const std::vector<CameraDesc>& cameras) {
   return std::make_unique<MeasuredCosts>(scene, settings, spp, objective, cameras);
-}
-
-double measure_live_ms(EvalCostSource& costs, Objective objective, int camera_index,
-                       const AccelChoice& choice, int repeats) {
-  std::vector<double> ms;
-  for (int r = 0; r < repeats; ++r)
-    ms.push_back(costs.frame(choice, camera_index).cost_ms(objective));
-  return median(ms);
 }
 
 std::unique_ptr<EvalCostSource> make_synthetic_costs(std::string scene, Objective objective) {

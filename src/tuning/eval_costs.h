@@ -31,10 +31,6 @@ std::unique_ptr<EvalCostSource> make_measured_costs(const Scene& scene,
                                                     Objective objective,
                                                     const std::vector<CameraDesc>& cameras);
 
-// A live re-measurement: the median cost of `repeats` frames of `choice` at one camera.
-double measure_live_ms(EvalCostSource& costs, Objective objective, int camera_index,
-                       const AccelChoice& choice, int repeats);
-
 // Synthetic costs of one scene and objective (see synthetic_frame_cost).
 std::unique_ptr<EvalCostSource> make_synthetic_costs(std::string scene, Objective objective);
 

@@ -107,9 +107,10 @@ std::string cell(double v) {
   return std::isfinite(v) && v > 0 ? report_number(v) : std::string("?");
 }
 
-// Every search frame of every camera along the path, in camera order, beside the live medians
-// of the default configuration, native Embree and the predictions of repetition 0 (validation
-// cameras only) over the same frames. A blank line between cameras breaks the lines.
+// Every search frame of every camera along the path, in camera order, beside the costs of the
+// default configuration, native Embree and the predictions of repetition 0 (validation cameras
+// only) in the camera's comparison, over the same frames. A blank line between cameras breaks
+// the lines.
 void write_trace(const EvalResults& r, const std::string& scene, const std::string& objective,
                  const fs::path& dir) {
   std::vector<const CameraRecord*> cameras;
@@ -140,7 +141,7 @@ void write_trace(const EvalResults& r, const std::string& scene, const std::stri
   write_plot(dir, stem,
              "set title \"Tuning trace along the camera path: " + scene + ", objective " +
                  objective +
-                 "\\n(grey: every search frame; flat: live medians per camera; no published "
+                 "\\n(grey: every search frame; flat: each camera's comparison; no published "
                  "value)\"\n"
                  "set xlabel 'frame (cameras in path order)'\nset ylabel 'ms per frame'\n"
                  "set datafile missing '?'\nset grid\nset key outside right\n"
@@ -194,8 +195,8 @@ void write_eval_figures(const EvalResults& r, const std::vector<EvalSummary>& su
     Series search, predicted;
     for (const CameraRecord& c : r.cameras)
       if (c.objective == obj) {
-        search[{scene_index(c.scene), 1}].push_back(c.search_speedup());
-        search[{scene_index(c.scene), 2}].push_back(c.native_speedup());
+        search[{scene_index(c.scene), 1}].push_back(c.search_speedup.ratio);
+        search[{scene_index(c.scene), 2}].push_back(c.native_speedup.ratio);
       }
     for (const PredictionRecord& pr : r.predictions)
       if (pr.objective == obj)
@@ -229,7 +230,8 @@ void write_eval_figures(const EvalResults& r, const std::vector<EvalSummary>& su
       if (pr.objective != obj) continue;
       int k = pr.predictor == "nn" ? 1 : 2;
       roof << pr.camera + (k == 1 ? 0.0 : 0.3) + 100 * (scene_index(pr.scene) - 1) << ' '
-           << report_number(pr.roofline) << ' ' << k << '\n';
+           << report_number(pr.roofline.ratio) << ' ' << k << ' ' << report_number(pr.roofline.low)
+           << ' ' << report_number(pr.roofline.high) << '\n';
       if (std::isfinite(pr.break_even)) {
         be << pr.break_even << ' ' << k << '\n';
         ++finite_break_evens;
@@ -247,14 +249,15 @@ void write_eval_figures(const EvalResults& r, const std::vector<EvalSummary>& su
         lo, hi);
     write_plot(dir, "roofline_" + obj,
                "set title 'Fraction of the best known configuration (" + obj +
-                   ")'\n"
+                   "), with 95 % intervals'\n"
                    "set xlabel 'camera (100 x scene index + camera)'\nset ylabel 'best / "
                    "predicted'\n"
                    "set yrange [0:1.1]\nset grid\nset key bottom right\n"
                    "plot 'roofline_" +
-                   obj + ".dat' using 1:($3==1?$2:1/0) title 'NN' pt 7 ps 0.6 lc '" + kFirstColour +
-                   "', '' using 1:($3==2?$2:1/0) title 'RBF' pt 5 ps 0.6 lc '" + kSecondColour +
-                   "'" + roof_references + "\n");
+                   obj + ".dat' using 1:($3==1?$2:1/0):4:5 with yerrorbars title 'NN' pt 7 " +
+                   "ps 0.6 lc '" + kFirstColour +
+                   "', '' using 1:($3==2?$2:1/0):4:5 with yerrorbars title 'RBF' pt 5 ps 0.6 lc '" +
+                   kSecondColour + "'" + roof_references + "\n");
     // Break-even frames span orders of magnitude: quarter-decade bins on a log axis. With no
     // finite break-even at all there is nothing to bin (gnuplot would refuse the empty log
     // axis): the plot says so instead.

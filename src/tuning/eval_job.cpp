@@ -1,12 +1,9 @@
 #include "tuning/eval_job.h"
 
-#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "tuner/hybrid_tuner.h"
-#include "tuning/accel_choice.h"
-#include "tuning/bvh_space.h"
 #include "tuning/tuner_state.h"
 
 namespace tuneray {
@@ -53,16 +50,17 @@ std::string to_json(const EvalJob& job) {
               {"search", job.search},
               {"done_hardware", job.done_hardware},
               {"frames", frames_json(job.done)},
-              {"measure", job.measure},
-              {"known", job.known}}
+              {"compare", job.compare}}
       .dump();
 }
 
 std::string to_json(const EvalJobResult& r) {
-  json live = json::array();
-  for (const auto& [config, ms] : r.live) live.push_back({config, ms});
-  return json{{"scene", r.scene},       {"objective", r.objective},        {"camera", r.camera},
-              {"hardware", r.hardware}, {"frames", frames_json(r.frames)}, {"live", live}}
+  return json{{"scene", r.scene},
+              {"objective", r.objective},
+              {"camera", r.camera},
+              {"hardware", r.hardware},
+              {"frames", frames_json(r.frames)},
+              {"comparison", r.comparison ? json::parse(to_json(*r.comparison)) : json()}}
       .dump();
 }
 
@@ -75,8 +73,7 @@ EvalJob parse_eval_job(const std::string& text) {
     job.search = j.at("search").get<bool>();
     job.done_hardware = j.at("done_hardware").get<std::string>();
     job.done = parse_frames(j);
-    job.measure = j.at("measure").get<std::vector<std::string>>();
-    job.known = j.at("known").get<std::vector<std::string>>();
+    job.compare = j.at("compare").get<std::vector<std::string>>();
     return job;
   });
 }
@@ -89,8 +86,8 @@ EvalJobResult parse_eval_job_result(const std::string& text) {
     r.camera = j.at("camera").get<int>();
     r.hardware = j.at("hardware").get<std::string>();
     r.frames = parse_frames(j);
-    for (const json& e : j.at("live"))
-      r.live.emplace_back(e.at(0).get<std::string>(), e.at(1).get<double>());
+    if (const json& c = j.at("comparison"); !c.is_null())
+      r.comparison = parse_eval_comparison(c.dump());
     return r;
   });
 }
@@ -106,7 +103,6 @@ EvalJobResult run_eval_job(const EvalProfile& p, const EvalScene& scene, EvalCos
   r.objective = job.objective;
   r.camera = job.camera;
   r.hardware = hardware;
-  std::vector<std::string> to_measure = job.measure;
   if (job.search) {
     const std::string run_key = eval_run_key(p, scene.name, objective);
     tuner::HybridTuner tuner(eval_space(p), make_indicator_schema(),
@@ -119,15 +115,10 @@ EvalJobResult run_eval_job(const EvalProfile& p, const EvalScene& scene, EvalCos
       }
     while (r.frames.size() < static_cast<size_t>(p.iterations))
       r.frames.push_back(measure_search_frame(tuner, state, costs, objective, job.camera));
-    const std::string incumbent = to_accel_choice(tuner.best(state)).to_string();
-    auto has = [&](const std::vector<std::string>& v) {
-      return std::find(v.begin(), v.end(), incumbent) != v.end();
-    };
-    if (!has(job.known) && !has(to_measure)) to_measure.push_back(incumbent);
   }
-  for (const std::string& config : to_measure)
-    r.live.emplace_back(config, measure_live_ms(costs, objective, job.camera,
-                                                parse_accel_choice(config), p.measure_repeats));
+  if (!job.compare.empty())
+    r.comparison =
+        measure_comparison(costs, objective, job.camera, job.compare, comparison_options(p));
   return r;
 }
 

@@ -1,12 +1,13 @@
-// A job of a study spread over MPI ranks: one (scene, objective, camera) — finish its search
-// and re-measure some configurations live — and what the rank that ran it sends back. Both
-// travel between ranks as JSON text.
+// A job of a study spread over MPI ranks: one (scene, objective, camera) — finish its search, or
+// measure its comparison — and what the rank that ran it sends back. Both travel between ranks
+// as JSON text.
 #pragma once
 
+#include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
+#include "tuning/eval_comparison.h"
 #include "tuning/eval_costs.h"
 #include "tuning/eval_profile.h"
 #include "tuning/eval_scene.h"
@@ -19,20 +20,20 @@ struct EvalJob {
   int objective = 0;  // index into the profile's objectives
   int camera = 0;
   // The search is incomplete: finish it, continuing from the frames the database holds (`done`,
-  // measured on `done_hardware`; a rank of another machine starts afresh instead), and
-  // re-measure its converged configuration unless `known` holds it.
+  // measured on `done_hardware`; a rank of another machine starts afresh instead).
   bool search = false;
   std::string done_hardware;
   std::vector<EvalFrame> done;
-  std::vector<std::string> measure;  // AccelChoice texts to re-measure live at this camera
-  std::vector<std::string> known;    // AccelChoice texts the live log holds at this camera
+  // The configurations (AccelChoice texts) of the camera's comparison, in measuring order;
+  // empty: none to measure.
+  std::vector<std::string> compare;
 };
 
 struct EvalJobResult {
   int scene = 0, objective = 0, camera = 0;
-  std::string hardware;           // of the rank that measured
-  std::vector<EvalFrame> frames;  // the whole search, `done` included (empty: no search)
-  std::vector<std::pair<std::string, double>> live;  // (AccelChoice text, median ms)
+  std::string hardware;                      // of the rank that measured
+  std::vector<EvalFrame> frames;             // the whole search, `done` included (empty: no search)
+  std::optional<EvalComparison> comparison;  // every round of it
 };
 
 std::string to_json(const EvalJob& job);

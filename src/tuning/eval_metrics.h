@@ -1,5 +1,6 @@
 // The study's figures of merit (DESIGN §6), as pure functions of measured costs, so they can be
-// tested on made-up numbers.
+// tested on made-up numbers. The ratios between configurations (search speedup, roofline, over
+// native) are paired ratios of a camera's comparison (eval_comparison.h).
 #pragma once
 
 #include <limits>
@@ -23,11 +24,6 @@ double prediction_speedup(const std::vector<double>& search_costs, double conver
 // much as the search; negative = more.
 double overhead_reduction(const std::vector<double>& search_costs, double converged_cost,
                           double predicted_cost, double best_cost, int frames);
-
-// Fraction of the best known configuration's speed the prediction reaches (best / predicted).
-inline double roofline_fraction(double predicted_cost, double best_cost) {
-  return predicted_cost > 0 ? best_cost / predicted_cost : 0.0;
-}
 
 // The first frame count k at which the search's accumulated time is no longer above the
 // prediction's (k x predicted_cost), i.e. the search has paid for its exploration. Beyond the

@@ -14,7 +14,6 @@ EvalProfile eval_profile(const std::string& name, const std::vector<std::string>
     p.width = 96;
     p.height = 54;
     p.repetitions = 3;
-    p.measure_repeats = 3;
   } else if (name == "standard") {
     p.scenes = shared_scenes;
     p.cameras = 10;

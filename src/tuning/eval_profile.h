@@ -20,7 +20,12 @@ struct EvalProfile {
   int max_bounces = 3;
   int repetitions = 15;  // random train/validation splits
   double train_fraction = 0.8;
-  int measure_repeats = 3;  // live re-measurements (median) of a configuration
+  // Each camera's comparison (eval_comparison.h): interleaved rounds from the minimum until the
+  // 95 % interval of the ratio between any two configurations is within ±compare_target, or
+  // the cap.
+  int compare_min_rounds = 3;
+  int compare_max_rounds = 30;
+  double compare_target = 0.03;
   std::vector<Objective> objectives = {Objective::kRender, Objective::kTotal};
   uint64_t seed = 1;
   bool wavefront = QualityOptions{}.wavefront;  // the scheduler frames are measured on

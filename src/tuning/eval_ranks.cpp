@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "tuner/hybrid_tuner.h"
-#include "tuning/cost_log.h"
+#include "tuning/comparison_log.h"
 #include "tuning/eval_scene.h"
 #include "tuning/eval_search.h"
 #include "tuning/tuner_state.h"
@@ -16,8 +16,9 @@ namespace tuneray {
 
 namespace {
 
-// A plan is complete after two rounds (searches, then what the predictors pick); a third that
-// still finds work means a rank delivers something else than what was asked.
+// A plan is complete after two rounds (searches, then the comparisons, which need every
+// camera's search for the predictions); a third that still finds work means a rank delivers
+// something else than what was asked.
 constexpr int kMaxRounds = 4;
 
 void check_indices(const EvalProfile& p, int scene, int objective, int camera) {
@@ -28,8 +29,8 @@ void check_indices(const EvalProfile& p, int scene, int objective, int camera) {
 }
 
 // Stores one job's result as a single-rank run would have stored it while measuring: each
-// search frame replayed into the tuner of the database (one transaction per frame), then the
-// live costs appended to the log.
+// search frame replayed into the tuner of the database (one transaction per frame), the
+// comparison appended whole to the comparison log.
 void store_result(const EvalProfile& p, const EvalPaths& paths, const EvalScene& scene,
                   const EvalJobResult& r) {
   const Objective objective = p.objectives[static_cast<size_t>(r.objective)];
@@ -53,11 +54,8 @@ void store_result(const EvalProfile& p, const EvalPaths& paths, const EvalScene&
             r.camera, i, stored[i].config, r.frames[i].config));
     }
   }
-  CostLog live(eval_live_costs_path(paths), run_key);
-  for (const auto& [config, ms] : r.live) {
-    const std::string key = eval_live_key(run_key, r.camera, config);
-    if (!live.find(key)) live.add(key, ms);
-  }
+  if (r.comparison)
+    ComparisonLog(eval_comparisons_path(paths), run_key).add(r.camera, *r.comparison);
 }
 
 std::string mixed_ranks_message(const std::vector<std::string>& hardware_by_rank) {
@@ -194,10 +192,11 @@ EvalResults run_eval_coordinator(const EvalProfile& p, const EvalPaths& paths,
         if (progress)
           progress(
               fmt::format("round {}: {}/{} stored; rank {}: {} {} camera {}, {} search "
-                          "frames, {} live costs",
+                          "frames, {} configurations compared in {} rounds",
                           round, stored, plan.jobs.size(), rank, scene->name,
                           to_string(p.objectives[static_cast<size_t>(r.objective)]), r.camera,
-                          r.frames.size(), r.live.size()));
+                          r.frames.size(), r.comparison ? r.comparison->configs.size() : 0,
+                          r.comparison ? r.comparison->rounds() : 0));
       });
     }
   } catch (...) {

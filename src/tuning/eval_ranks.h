@@ -1,5 +1,5 @@
-// The study spread over ranks. Rank 0 coordinates: it alone opens the tuning database, the live
-// cost log and the report; it plans what is missing (run_eval_study with a plan), hands the
+// The study spread over ranks. Rank 0 coordinates: it alone opens the tuning database, the
+// comparison log and the report; it plans what is missing (run_eval_study with a plan), hands the
 // jobs out one at a time to whichever worker asks next (jobs differ in cost by 100x, so a fixed
 // split would leave ranks idle), and stores each result as it arrives, so a killed run loses
 // nothing already reported and resumes with any number of ranks. Rank 0 measures nothing: it

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <ostream>
 
 #include "image/atomic_file.h"
 #include "tuning/eval_figures.h"
@@ -34,19 +35,55 @@ std::vector<double> finite(const std::vector<double>& v) {
   return out;
 }
 
+double mean_of(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
+
+std::vector<double> ratios_of(const std::vector<RatioInterval>& v) {
+  std::vector<double> out;
+  for (const RatioInterval& x : v) out.push_back(x.ratio);
+  return out;
+}
+
+// The per-comparison bounds summarised by `statistic` (median or mean, as the ratio is).
+TypicalInterval typical_interval(const std::vector<RatioInterval>& v,
+                                 double (*statistic)(const std::vector<double>&)) {
+  std::vector<double> lows, highs;
+  for (const RatioInterval& x : v) {
+    lows.push_back(x.low);
+    highs.push_back(x.high);
+  }
+  return {statistic(lows), statistic(highs)};
+}
+
+// median() takes its values by copy: this is its shape as a statistic for typical_interval.
+double median_of(const std::vector<double>& v) {
+  return median(v);
+}
+
+// "1.234 [1.220, 1.250]": a ratio with its typical 95 % interval.
+std::string with_interval(double value, const TypicalInterval& i) {
+  return fmt::format("{} [{}, {}]", num(value), num(i.low), num(i.high));
+}
+
 void write_csvs(const EvalResults& r, const fs::path& dir) {
   auto cams = open_out(dir / "cameras.csv");
   cams << "scene,objective,camera,default_ms,converged_ms,best_ms,search_speedup,converged,"
           "search_frames,search_total_ms,converged_config,best_config,native_ms,"
-          "native_speedup\n";
+          "native_speedup,search_speedup_low,search_speedup_high,native_speedup_low,"
+          "native_speedup_high,candidates,rounds,ci_within_target\n";
   for (const CameraRecord& c : r.cameras) {
     double total = 0;
     for (double ms : c.search_ms) total += ms;
-    cams << fmt::format("{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\",{},{}\n", c.scene, c.objective,
-                        c.camera, num(c.default_ms), num(c.converged_ms), num(c.best_ms),
-                        num(c.search_speedup()), c.converged ? 1 : 0, c.search_ms.size(),
-                        num(total), c.converged_config, c.best_config, num(c.native_ms),
-                        num(c.native_speedup()));
+    cams << fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\",{},{},{},{},{},{},{},{},{}\n", c.scene,
+        c.objective, c.camera, num(c.default_ms), num(c.converged_ms), num(c.best_ms),
+        num(c.search_speedup.ratio), c.converged ? 1 : 0, c.search_ms.size(), num(total),
+        c.converged_config, c.best_config, num(c.native_ms), num(c.native_speedup.ratio),
+        num(c.search_speedup.low), num(c.search_speedup.high), num(c.native_speedup.low),
+        num(c.native_speedup.high), c.candidates, c.rounds, c.within_target ? 1 : 0);
   }
   cams.commit();
   auto frames = open_out(dir / "search_frames.csv");
@@ -58,13 +95,116 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
   frames.commit();
   auto preds = open_out(dir / "predictions.csv");
   preds << "scene,objective,repetition,camera,predictor,predicted_ms,search_total_ms,speedup,"
-           "overhead_reduction,roofline,break_even,config,native_speedup\n";
+           "overhead_reduction,roofline,break_even,config,native_speedup,roofline_low,"
+           "roofline_high,native_speedup_low,native_speedup_high\n";
   for (const PredictionRecord& p : r.predictions)
-    preds << fmt::format("{},{},{},{},{},{},{},{},{},{},{},\"{}\",{}\n", p.scene, p.objective,
-                         p.repetition, p.camera, p.predictor, num(p.predicted_ms),
+    preds << fmt::format("{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{},{},{}\n", p.scene,
+                         p.objective, p.repetition, p.camera, p.predictor, num(p.predicted_ms),
                          num(p.search_total_ms), num(p.speedup), num(p.overhead_reduction),
-                         num(p.roofline), num(p.break_even), p.config, num(p.native_speedup));
+                         num(p.roofline.ratio), num(p.break_even), p.config,
+                         num(p.native_speedup.ratio), num(p.roofline.low), num(p.roofline.high),
+                         num(p.native_speedup.low), num(p.native_speedup.high));
   preds.commit();
+}
+
+void write_summary_csv(const std::vector<EvalSummary>& summaries, const fs::path& dir) {
+  auto f = open_out(dir / "summary.csv");
+  f << "scene,objective,cameras,search_speedup_median,search_native_speedup_median,"
+       "nn_speedup_geomean,rbf_speedup_geomean,nn_overhead_reduction_median,"
+       "rbf_overhead_reduction_median,nn_roofline_mean,rbf_roofline_mean,nn_break_even_median,"
+       "rbf_break_even_median,nn_never,rbf_never,nn_native_speedup_median,"
+       "rbf_native_speedup_median,within_target,rounds_median,search_speedup_low,"
+       "search_speedup_high,search_native_speedup_low,search_native_speedup_high,"
+       "nn_roofline_low,nn_roofline_high,rbf_roofline_low,rbf_roofline_high,"
+       "nn_native_speedup_low,nn_native_speedup_high,rbf_native_speedup_low,"
+       "rbf_native_speedup_high\n";
+  auto bounds = [](const TypicalInterval& i) { return num(i.low) + "," + num(i.high); };
+  for (const EvalSummary& s : summaries)
+    f << fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.scene,
+        s.objective, s.cameras, num(s.search_speedup_median), num(s.search_native_speedup_median),
+        num(s.nn_speedup_geomean), num(s.rbf_speedup_geomean), num(s.nn_overhead_reduction_median),
+        num(s.rbf_overhead_reduction_median), num(s.nn_roofline_mean), num(s.rbf_roofline_mean),
+        num(s.nn_break_even_median), num(s.rbf_break_even_median), s.nn_never, s.rbf_never,
+        num(s.nn_native_speedup_median), num(s.rbf_native_speedup_median), s.within_target,
+        num(s.rounds_median), bounds(s.search_speedup_interval),
+        bounds(s.search_native_speedup_interval), bounds(s.nn_roofline_interval),
+        bounds(s.rbf_roofline_interval), bounds(s.nn_native_speedup_interval),
+        bounds(s.rbf_native_speedup_interval));
+  f.commit();
+}
+
+// One objective's table per scene and its comparison with the published figures.
+void write_objective_section(std::ostream& md, const std::vector<EvalSummary>& summaries,
+                             const std::string& obj, const EvalProfile& p) {
+  const bool render = obj == "render";
+  md << "## Objective `" << obj << "` ("
+     << (render ? "render time, progressive rendering" : "build + render time, real-time rendering")
+     << ")\n\n"
+     << fmt::format(
+            "| scene | cameras | comparisons within ±{:g} % | search speedup "
+            "(median) | search over native (median) | NN speedup over search (geo-mean) | RBF "
+            "speedup (geo-mean) | NN overhead reduction (median) | RBF overhead reduction | NN "
+            "roofline (mean) | RBF roofline | NN break-even (median frame, never) | RBF "
+            "break-even | NN over native (median) | RBF over native "
+            "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+            100 * p.compare_target);
+  std::vector<double> nn_speed, rbf_speed, search_speed, nn_overhead, nn_roof, rbf_roof;
+  std::vector<double> search_native;
+  int comparisons = 0, within_target = 0;
+  for (const EvalSummary& s : summaries) {
+    if (s.objective != obj) continue;
+    md << fmt::format(
+        "| {} | {} | {} of {}, median {} rounds | {} | {} | {} | {} | {} | {} | {} | {} "
+        "| {} ({}) | {} ({}) | {} | {} |\n",
+        s.scene, s.cameras, s.within_target, s.cameras, num(s.rounds_median),
+        with_interval(s.search_speedup_median, s.search_speedup_interval),
+        with_interval(s.search_native_speedup_median, s.search_native_speedup_interval),
+        num(s.nn_speedup_geomean), num(s.rbf_speedup_geomean), num(s.nn_overhead_reduction_median),
+        num(s.rbf_overhead_reduction_median),
+        with_interval(s.nn_roofline_mean, s.nn_roofline_interval),
+        with_interval(s.rbf_roofline_mean, s.rbf_roofline_interval), num(s.nn_break_even_median),
+        s.nn_never, num(s.rbf_break_even_median), s.rbf_never,
+        with_interval(s.nn_native_speedup_median, s.nn_native_speedup_interval),
+        with_interval(s.rbf_native_speedup_median, s.rbf_native_speedup_interval));
+    comparisons += s.cameras;
+    within_target += s.within_target;
+    search_native.push_back(s.search_native_speedup_median);
+    if (s.nn_speedup_geomean > 0) nn_speed.push_back(s.nn_speedup_geomean);
+    if (s.rbf_speedup_geomean > 0) rbf_speed.push_back(s.rbf_speedup_geomean);
+    search_speed.push_back(s.search_speedup_median);
+    nn_overhead.push_back(s.nn_overhead_reduction_median);
+    nn_roof.push_back(s.nn_roofline_mean);
+    rbf_roof.push_back(s.rbf_roofline_mean);
+  }
+  auto max_of = [](const std::vector<double>& v) {
+    return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+  };
+  auto min_of = [](const std::vector<double>& v) {
+    return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+  };
+  md << "\n| figure | ours | published (Herveau et al.) |\n|---|---|---|\n"
+     << fmt::format(
+            "| search speedup over default, median per scene (best scene) | {} | 1.11 "
+            "(sponza); 1.02–1.04 elsewhere |\n",
+            num(max_of(search_speed)))
+     << fmt::format(
+            "| search speedup over native Embree, median per scene (worst scene – best "
+            "scene) | {} – {} | — (target: >= 1.10 median, never below 1.0) |\n",
+            num(min_of(search_native)), num(max_of(search_native)))
+     << fmt::format("| NN speedup over search, geo-mean over scenes | {} | {} |\n",
+                    num(geometric_mean(nn_speed)), render ? "1.05" : "1.12")
+     << fmt::format("| RBF speedup over search, geo-mean over scenes | {} | {} |\n",
+                    num(geometric_mean(rbf_speed)), render ? "1.04" : "—")
+     << fmt::format("| best overhead reduction (NN, median per scene) | {} % | up to {} |\n",
+                    num(100 * max_of(nn_overhead)), render ? "87.5 %" : "89.3 %")
+     << fmt::format("| roofline, mean over scenes | NN {} %, RBF {} % | {} |\n",
+                    num(100 * mean_of(nn_roof)), num(100 * mean_of(rbf_roof)),
+                    render ? "> 95 %" : "NN 92 %, RBF 83 %")
+     << fmt::format(
+            "| comparisons whose every 95 % interval reached ±{:g} % before the cap of {} "
+            "rounds | {} of {} | — (none published) |\n\n",
+            100 * p.compare_target, p.compare_max_rounds, within_target, comparisons);
 }
 
 }  // namespace
@@ -84,16 +224,23 @@ std::vector<EvalSummary> summarise(const EvalResults& r) {
     EvalSummary s;
     s.scene = scene;
     s.objective = obj;
-    std::vector<double> search, search_native;
+    std::vector<RatioInterval> search, search_native;
+    std::vector<double> rounds;
     for (const CameraRecord& c : r.cameras)
       if (c.scene == scene && c.objective == obj) {
-        search.push_back(c.search_speedup());
-        search_native.push_back(c.native_speedup());
+        search.push_back(c.search_speedup);
+        search_native.push_back(c.native_speedup);
+        rounds.push_back(c.rounds);
+        s.within_target += c.within_target ? 1 : 0;
       }
     s.cameras = static_cast<int>(search.size());
-    s.search_speedup_median = median(search);
-    s.search_native_speedup_median = median(search_native);
-    std::map<std::string, std::vector<double>> speed, overhead, roof, breakeven, native;
+    s.rounds_median = median(rounds);
+    s.search_speedup_median = median(ratios_of(search));
+    s.search_speedup_interval = typical_interval(search, median_of);
+    s.search_native_speedup_median = median(ratios_of(search_native));
+    s.search_native_speedup_interval = typical_interval(search_native, median_of);
+    std::map<std::string, std::vector<double>> speed, overhead, breakeven;
+    std::map<std::string, std::vector<RatioInterval>> roof, native;
     std::map<std::string, int> never;
     for (const PredictionRecord& p : r.predictions) {
       if (p.scene != scene || p.objective != obj) continue;
@@ -106,23 +253,22 @@ std::vector<EvalSummary> summarise(const EvalResults& r) {
       else
         ++never[p.predictor];
     }
-    auto mean = [](const std::vector<double>& v) {
-      double sum = 0;
-      for (double x : v) sum += x;
-      return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
-    };
     s.nn_speedup_geomean = geometric_mean(speed["nn"]);
     s.rbf_speedup_geomean = geometric_mean(speed["rbf"]);
     s.nn_overhead_reduction_median = median(finite(overhead["nn"]));
     s.rbf_overhead_reduction_median = median(finite(overhead["rbf"]));
-    s.nn_roofline_mean = mean(roof["nn"]);
-    s.rbf_roofline_mean = mean(roof["rbf"]);
+    s.nn_roofline_mean = mean_of(ratios_of(roof["nn"]));
+    s.nn_roofline_interval = typical_interval(roof["nn"], mean_of);
+    s.rbf_roofline_mean = mean_of(ratios_of(roof["rbf"]));
+    s.rbf_roofline_interval = typical_interval(roof["rbf"], mean_of);
     s.nn_break_even_median = median(breakeven["nn"]);
     s.rbf_break_even_median = median(breakeven["rbf"]);
     s.nn_never = never["nn"];
     s.rbf_never = never["rbf"];
-    s.nn_native_speedup_median = median(native["nn"]);
-    s.rbf_native_speedup_median = median(native["rbf"]);
+    s.nn_native_speedup_median = median(ratios_of(native["nn"]));
+    s.nn_native_speedup_interval = typical_interval(native["nn"], median_of);
+    s.rbf_native_speedup_median = median(ratios_of(native["rbf"]));
+    s.rbf_native_speedup_interval = typical_interval(native["rbf"], median_of);
     out.push_back(s);
   }
   return out;
@@ -136,24 +282,7 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
   remove_stale_temporaries((dir / "plots").string());
   write_csvs(r, dir);
   std::vector<EvalSummary> summaries = summarise(r);
-  {
-    auto f = open_out(dir / "summary.csv");
-    f << "scene,objective,cameras,search_speedup_median,search_native_speedup_median,"
-         "nn_speedup_geomean,rbf_speedup_geomean,nn_overhead_reduction_median,"
-         "rbf_overhead_reduction_median,nn_roofline_mean,rbf_roofline_mean,nn_break_even_median,"
-         "rbf_break_even_median,nn_never,rbf_never,nn_native_speedup_median,"
-         "rbf_native_speedup_median\n";
-    for (const EvalSummary& s : summaries)
-      f << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.scene, s.objective,
-                       s.cameras, num(s.search_speedup_median), num(s.search_native_speedup_median),
-                       num(s.nn_speedup_geomean), num(s.rbf_speedup_geomean),
-                       num(s.nn_overhead_reduction_median), num(s.rbf_overhead_reduction_median),
-                       num(s.nn_roofline_mean), num(s.rbf_roofline_mean),
-                       num(s.nn_break_even_median), num(s.rbf_break_even_median), s.nn_never,
-                       s.rbf_never, num(s.nn_native_speedup_median),
-                       num(s.rbf_native_speedup_median));
-    f.commit();
-  }
+  write_summary_csv(summaries, dir);
   write_eval_figures(r, summaries, (dir / "plots").string());
   bool plotted = draw_eval_figures((dir / "plots").string());
 
@@ -172,77 +301,26 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
             "Protocol: {} cameras per scene along its camera path, {} search frames per "
             "camera (each builds the BVH as the objective requires and renders {} spp at "
             "{}x{}, {} bounces, {} scheduler); the search space is {}; predictors trained "
-            "on {:.0f} % of the cameras and validated on the rest, {} random splits. Every "
-            "configuration compared, native Embree included, is re-measured live (median of "
-            "{}).\n\n",
+            "on {:.0f} % of the cameras and validated on the rest, {} random splits. At each "
+            "camera, every configuration compared (the default, native Embree, the search's "
+            "converged configuration and best sample, every prediction) is re-measured in one "
+            "comparison: an untimed frame of each, then rounds of one frame each in rotating "
+            "order, from {} rounds until the 95 % confidence interval of the ratio between any "
+            "two of them is within ±{:g} %, at most {} rounds. Costs are geometric means over "
+            "the rounds, ratios the geometric means of the per-round ratios, shown with their "
+            "95 % interval in brackets (over cameras: the median, or for the roofline the mean, "
+            "of the single comparisons' bounds).\n\n",
             p.cameras, p.iterations, p.spp, p.width, p.height, p.max_bounces,
             p.wavefront ? "wavefront" : "tile",
             p.native_in_space ? "the backend (tuned BVH or native Embree) and the BVH parameters"
                               : "the tuned BVH's parameters only",
-            100 * p.train_fraction, p.repetitions, p.measure_repeats);
+            100 * p.train_fraction, p.repetitions, p.compare_min_rounds, 100 * p.compare_target,
+            p.compare_max_rounds);
   for (const std::string obj : {"render", "total"}) {
     bool any = false;
     for (const EvalSummary& s : summaries) any |= s.objective == obj;
     if (!any) continue;
-    md << "## Objective `" << obj << "` ("
-       << (obj == std::string("render") ? "render time, progressive rendering"
-                                        : "build + render time, real-time rendering")
-       << ")\n\n"
-       << "| scene | cameras | search speedup (median) | search over native (median) | NN "
-          "speedup over search (geo-mean) | RBF speedup (geo-mean) | NN overhead reduction "
-          "(median) | RBF overhead reduction | NN roofline (mean) | RBF roofline | NN break-even "
-          "(median frame, never) | RBF break-even | NN over native (median) | RBF over native "
-          "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    std::vector<double> nn_speed, rbf_speed, search_speed, nn_overhead, nn_roof, rbf_roof;
-    std::vector<double> search_native;
-    for (const EvalSummary& s : summaries) {
-      if (s.objective != obj) continue;
-      md << fmt::format(
-          "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) | {} | {} |\n",
-          s.scene, s.cameras, num(s.search_speedup_median), num(s.search_native_speedup_median),
-          num(s.nn_speedup_geomean), num(s.rbf_speedup_geomean),
-          num(s.nn_overhead_reduction_median), num(s.rbf_overhead_reduction_median),
-          num(s.nn_roofline_mean), num(s.rbf_roofline_mean), num(s.nn_break_even_median),
-          s.nn_never, num(s.rbf_break_even_median), s.rbf_never, num(s.nn_native_speedup_median),
-          num(s.rbf_native_speedup_median));
-      search_native.push_back(s.search_native_speedup_median);
-      if (s.nn_speedup_geomean > 0) nn_speed.push_back(s.nn_speedup_geomean);
-      if (s.rbf_speedup_geomean > 0) rbf_speed.push_back(s.rbf_speedup_geomean);
-      search_speed.push_back(s.search_speedup_median);
-      nn_overhead.push_back(s.nn_overhead_reduction_median);
-      nn_roof.push_back(s.nn_roofline_mean);
-      rbf_roof.push_back(s.rbf_roofline_mean);
-    }
-    auto max_of = [](const std::vector<double>& v) {
-      return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
-    };
-    auto min_of = [](const std::vector<double>& v) {
-      return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
-    };
-    auto mean_of = [](const std::vector<double>& v) {
-      double sum = 0;
-      for (double x : v) sum += x;
-      return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
-    };
-    md << "\n| figure | ours | published (Herveau et al.) |\n|---|---|---|\n"
-       << fmt::format(
-              "| search speedup over default, median per scene (best scene) | {} | 1.11 "
-              "(sponza); 1.02–1.04 elsewhere |\n",
-              num(max_of(search_speed)))
-       << fmt::format(
-              "| search speedup over native Embree, median per scene (worst scene – best "
-              "scene) | {} – {} | — (target: >= 1.10 median, never below 1.0) |\n",
-              num(min_of(search_native)), num(max_of(search_native)))
-       << fmt::format("| NN speedup over search, geo-mean over scenes | {} | {} |\n",
-                      num(geometric_mean(nn_speed)), obj == std::string("render") ? "1.05" : "1.12")
-       << fmt::format("| RBF speedup over search, geo-mean over scenes | {} | {} |\n",
-                      num(geometric_mean(rbf_speed)), obj == std::string("render") ? "1.04" : "—")
-       << fmt::format("| best overhead reduction (NN, median per scene) | {} % | up to {} |\n",
-                      num(100 * max_of(nn_overhead)),
-                      obj == std::string("render") ? "87.5 %" : "89.3 %")
-       << fmt::format("| roofline, mean over scenes | NN {} %, RBF {} % | {} |\n\n",
-                      num(100 * mean_of(nn_roof)), num(100 * mean_of(rbf_roof)),
-                      obj == std::string("render") ? "> 95 %" : "NN 92 %, RBF 83 %");
+    write_objective_section(md.stream(), summaries, obj, p);
     if (plotted) {
       for (const char* figure : {"search_speedup", "predictor_speedup", "roofline", "break_even"})
         md << "![" << figure << "](plots/" << figure << "_" << obj << ".png)\n";
@@ -254,16 +332,18 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
     }
   }
   if (!plotted) md << "Plots: gnuplot was not available or failed; the scripts are in plots/.\n\n";
-  md << "Definitions: *search speedup* = default / converged configuration, both re-measured "
-        "live; *over native* = native Embree (medium quality, as `render --accel native`) / the "
-        "converged or predicted configuration, re-measured live the same way; *speedup over "
-        "search* = accumulated time of the search's frames / (frames x the "
-        "prediction's cost); *overhead reduction* = 1 - (prediction's accumulated time - frames "
-        "x best) / (search's accumulated time - frames x best); *roofline* = best / predicted "
-        "cost; *break-even* = first frame at which the search's accumulated time is no longer "
-        "above the prediction's (never = the search's converged configuration is not faster "
-        "than the prediction). A refused build counts as a frame at the default configuration's "
-        "cost. Raw data: cameras.csv, search_frames.csv, predictions.csv, summary.csv.\n";
+  md << "Definitions: *search speedup* = default / converged configuration; *over native* = "
+        "native Embree (medium quality, as `render --accel native`) / the converged or "
+        "predicted configuration; *speedup over search* = accumulated time of the search's "
+        "frames / (frames x the prediction's cost); *overhead reduction* = 1 - (prediction's "
+        "accumulated time - frames x best) / (search's accumulated time - frames x best); "
+        "*roofline* = best / predicted cost, where *best* is the fastest configuration of the "
+        "camera's comparison; *break-even* = first frame at which the search's accumulated time "
+        "is no longer above the prediction's (never = the search's converged configuration is "
+        "not faster than the prediction). Every cost and ratio except the search's own frames "
+        "comes from the camera's comparison. A refused build counts as a frame at the cost the "
+        "search measured for the default configuration. Raw data: cameras.csv, "
+        "search_frames.csv, predictions.csv, summary.csv.\n";
   md.commit();
   return report_path.string();
 }

@@ -9,23 +9,35 @@
 
 namespace tuneray {
 
+// A typical 95 % interval of a ratio summarised over cameras or predictions: the same statistic
+// as the ratio's (median or mean) of the single comparisons' bounds. It says how tightly each
+// comparison pinned its ratio down, not how uncertain the statistic over cameras is.
+struct TypicalInterval {
+  double low = 0, high = 0;
+};
+
 // Per scene and objective, the aggregated figures shown in the report.
 struct EvalSummary {
   std::string scene, objective;
   int cameras = 0;
+  int within_target = 0;     // comparisons whose every interval reached the target before the cap
+  double rounds_median = 0;  // rounds per comparison
   double search_speedup_median = 0;         // default / converged, over cameras
   double search_native_speedup_median = 0;  // native Embree / converged, over cameras
-  double nn_speedup_geomean = 0;            // prediction over search, accumulated frames
+  TypicalInterval search_speedup_interval, search_native_speedup_interval;
+  double nn_speedup_geomean = 0;  // prediction over search, accumulated frames
   double rbf_speedup_geomean = 0;
   double nn_overhead_reduction_median = 0;
   double rbf_overhead_reduction_median = 0;
   double nn_roofline_mean = 0;
   double rbf_roofline_mean = 0;
+  TypicalInterval nn_roofline_interval, rbf_roofline_interval;
   double nn_break_even_median = 0;  // over the finite ones
   double rbf_break_even_median = 0;
   int nn_never = 0, rbf_never = 0;      // predictions the search never catches up with
   double nn_native_speedup_median = 0;  // native Embree / predicted, over predictions
   double rbf_native_speedup_median = 0;
+  TypicalInterval nn_native_speedup_interval, rbf_native_speedup_interval;
 };
 
 std::vector<EvalSummary> summarise(const EvalResults& results);

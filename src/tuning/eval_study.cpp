@@ -5,23 +5,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <limits>
 #include <map>
 #include <memory>
-#include <numeric>
-#include <set>
-#include <sstream>
+#include <optional>
 
-#include "tuner/greedy_gq.h"
 #include "tuner/hardware_signature.h"
 #include "tuner/hybrid_tuner.h"
-#include "tuner/nearest_neighbour.h"
-#include "tuner/rng.h"
 #include "tuning/bvh_space.h"
-#include "tuning/cost_log.h"
+#include "tuning/comparison_log.h"
+#include "tuning/eval_comparison.h"
 #include "tuning/eval_costs.h"
 #include "tuning/eval_metrics.h"
+#include "tuning/eval_predictions.h"
 #include "tuning/eval_scene.h"
 #include "tuning/eval_search.h"
 #include "tuning/stats.h"
@@ -33,61 +28,96 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Live re-measurements: the median of `repeats` frames per (camera, configuration), kept in a
-// CSV beside the report so that an interrupted study does not measure them again. In a plan
-// (MPI coordinator), a missing one is listed as work and reads as NaN.
-class LiveCosts {
- public:
-  LiveCosts(std::string path, std::string prefix, EvalPlan* plan, int scene, int objective)
-      : log_(std::move(path), prefix),
-        prefix_(prefix),
-        plan_(plan),
-        scene_(scene),
-        objective_(objective) {}
+// What the study keeps of one camera's search, read back from the database.
+struct SearchOutcome {
+  CameraSearch search;      // what the predictors learn from
+  std::string best_sample;  // AccelChoice text of the lowest sample: a candidate, never a cost
+};
 
-  double get(EvalCostSource* costs, Objective objective, int camera_index,
-             const AccelChoice& config, int repeats) {
-    const std::string text = config.to_string();
-    if (auto known = log_.find(eval_live_key(prefix_, camera_index, text))) return *known;
-    if (plan_) {
-      std::vector<std::string>& measure = plan_->job(scene_, objective_, camera_index).measure;
-      if (std::find(measure.begin(), measure.end(), text) == measure.end()) measure.push_back(text);
-      return std::numeric_limits<double>::quiet_NaN();
+// A refused build counts as a frame rendered with the default tree, at the cost the search
+// itself measured for the default configuration (every search starts there), so the searches
+// need nothing measured outside them. Should that be missing, the search's worst frame stands
+// in for it.
+double default_cost_in_search(const std::vector<tuner::StoredSample>& samples,
+                              const std::string& default_config) {
+  std::vector<double> at_default;
+  double worst = 0;
+  for (const tuner::StoredSample& s : samples) {
+    if (!std::isfinite(s.cost)) continue;
+    if (s.config == default_config) at_default.push_back(s.cost * 1000.0);
+    worst = std::max(worst, s.cost * 1000.0);
+  }
+  return at_default.empty() ? worst : median(at_default);
+}
+
+SearchOutcome search_outcome(const std::vector<tuner::StoredSample>& samples,
+                             const tuner::Space& space, tuner::Config incumbent) {
+  SearchOutcome o;
+  const double refused_ms = default_cost_in_search(samples, space.default_config().to_string());
+  double best_ms = kNever;
+  o.best_sample = to_accel_choice(space.default_config()).to_string();
+  for (const tuner::StoredSample& s : samples) {
+    const double ms = std::isfinite(s.cost) ? s.cost * 1000.0 : refused_ms;
+    o.search.samples.emplace_back(s.config, ms);
+    if (std::isfinite(s.cost) && ms < best_ms) {
+      best_ms = ms;
+      o.best_sample = to_accel_choice(space.parse(s.config)).to_string();
     }
-    return log_.add(eval_live_key(prefix_, camera_index, text),
-                    measure_live_ms(*costs, objective, camera_index, config, repeats));
   }
+  o.search.incumbent = std::move(incumbent);
+  return o;
+}
 
-  // Configurations measured at one camera.
-  std::vector<std::string> known(int camera_index) const {
-    std::vector<std::string> configs;
-    const std::string head = fmt::format("{}\t{}\t", prefix_, camera_index);
-    for (const auto& [key, ms] : log_.entries())
-      if (key.compare(0, head.size(), head) == 0) configs.push_back(key.substr(head.size()));
-    return configs;
-  }
+// The camera's costs and ratios, all from its comparison.
+void add_comparison(CameraRecord& r, const EvalComparison& c) {
+  const std::string default_config = AccelChoice::tuned(BvhConfig{}).to_string();
+  const std::string native_config = AccelChoice::native().to_string();
+  r.default_ms = c.cost_ms(default_config);
+  r.native_ms = c.cost_ms(native_config);
+  r.converged_ms = c.cost_ms(r.converged_config);
+  r.best_config = c.fastest();
+  r.best_ms = c.cost_ms(r.best_config);
+  r.search_speedup = c.ratio(default_config, r.converged_config);
+  r.native_speedup = c.ratio(native_config, r.converged_config);
+  r.candidates = static_cast<int>(c.configs.size());
+  r.rounds = c.rounds();
+  r.within_target = c.within_target;
+}
 
-  // Best (lowest) measured cost and its configuration for one camera.
-  std::pair<double, std::string> best(int camera_index) const {
-    std::string head = fmt::format("{}\t{}\t", prefix_, camera_index);
-    std::pair<double, std::string> b{kNever, ""};
-    for (const auto& [key, ms] : log_.entries())
-      if (key.compare(0, head.size(), head) == 0 && ms < b.first) b = {ms, key.substr(head.size())};
-    return b;
-  }
+// The prediction's figures of merit (DESIGN §6) against the search and its camera's comparison.
+PredictionRecord prediction_record(const EvalProfile& p, const CameraRecord& r,
+                                   const EvalComparison& c, const EvalPrediction& prediction) {
+  PredictionRecord pr;
+  pr.scene = r.scene;
+  pr.objective = r.objective;
+  pr.repetition = prediction.repetition;
+  pr.camera = prediction.camera;
+  pr.predictor = prediction.predictor;
+  pr.config = prediction.config;
+  pr.predicted_ms = c.cost_ms(pr.config);
+  pr.search_total_ms = accumulated_search_time(r.search_ms, r.converged_ms, p.iterations);
+  pr.speedup = prediction_speedup(r.search_ms, r.converged_ms, pr.predicted_ms, p.iterations);
+  pr.overhead_reduction =
+      overhead_reduction(r.search_ms, r.converged_ms, pr.predicted_ms, r.best_ms, p.iterations);
+  pr.roofline = c.ratio(r.best_config, pr.config);
+  pr.native_speedup = c.ratio(AccelChoice::native().to_string(), pr.config);
+  pr.break_even = break_even_frame(r.search_ms, r.converged_ms, pr.predicted_ms);
+  return pr;
+}
 
- private:
-  CostLog log_;
-  std::string prefix_;
-  EvalPlan* plan_;
-  int scene_, objective_;
-};
-
-struct SceneData {
-  // Per camera: every search sample (config text, cost in ms; failures already replaced).
-  std::vector<std::vector<std::pair<std::string, double>>> samples;
-  std::vector<tuner::Config> incumbents;  // per camera, the search's converged configuration
-};
+std::string comparison_line(const CameraRecord& r, const EvalProfile& p) {
+  auto interval = [](const RatioInterval& x) {
+    return fmt::format("{:.3f}x [{:.3f}, {:.3f}]", x.ratio, x.low, x.high);
+  };
+  return fmt::format(
+      "{:<14} {:<6} camera {:>3}: {} configurations compared in {} rounds ({}): default {:8.2f} "
+      "ms, native {:8.2f} ms, converged {:8.2f} ms ({} default, {} native), best known {:8.2f} "
+      "ms",
+      r.scene, r.objective, r.camera, r.candidates, r.rounds,
+      r.within_target ? fmt::format("within ±{:g} %", 100 * p.compare_target) : "cap reached",
+      r.default_ms, r.native_ms, r.converged_ms, interval(r.search_speedup),
+      interval(r.native_speedup), r.best_ms);
+}
 
 std::vector<std::string> unique_hardware(const std::vector<std::string>& hardware) {
   std::vector<std::string> unique;
@@ -148,12 +178,8 @@ std::string eval_db_path(const EvalPaths& paths) {
   return paths.db_path.empty() ? (fs::path(paths.out_dir) / "eval.db").string() : paths.db_path;
 }
 
-std::string eval_live_costs_path(const EvalPaths& paths) {
-  return (fs::path(paths.out_dir) / "live_costs.tsv").string();
-}
-
-std::string eval_live_key(const std::string& run_key, int camera, const std::string& config) {
-  return fmt::format("{}\t{}\t{}", run_key, camera, config);
+std::string eval_comparisons_path(const EvalPaths& paths) {
+  return (fs::path(paths.out_dir) / "comparisons.tsv").string();
 }
 
 std::string mixed_machines_message(const std::vector<std::string>& machines) {
@@ -205,24 +231,19 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
   for (size_t si = 0; si < p.scenes.size(); ++si) {
     const std::unique_ptr<EvalScene> scene = load_eval_scene(p, p.scenes[si]);
     const std::string& name = scene->name;
-    SceneData data;
 
     for (size_t oi = 0; oi < p.objectives.size(); ++oi) {
       const Objective objective = p.objectives[oi];
-      const std::string obj = to_string(objective);
       const std::string run_key = eval_run_key(p, name, objective);
       std::unique_ptr<EvalCostSource> costs;
-      if (!o.plan) costs = make_eval_costs(p, *scene, objective);
-      const AccelChoice default_choice = AccelChoice::tuned(BvhConfig{});
-      const AccelChoice native_choice = AccelChoice::native();
-      LiveCosts live(eval_live_costs_path(paths), run_key, o.plan, static_cast<int>(si),
-                     static_cast<int>(oi));
+      if (!o.plan)
+        costs =
+            o.make_costs ? o.make_costs(*scene, objective) : make_eval_costs(p, *scene, objective);
 
       // 1. A full search at every camera, each from the default configuration.
       const size_t n_cameras = scene->cameras.size();
       std::vector<CameraRecord> records(n_cameras);
-      data.samples.assign(n_cameras, {});
-      data.incumbents.assign(n_cameras, space.default_config());
+      std::vector<SearchOutcome> searches(n_cameras);
       bool searched_all = true;
       for (size_t ci = 0; ci < n_cameras; ++ci) {
         const int camera = static_cast<int>(ci);
@@ -232,7 +253,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
             search_source(db, options.tuning_key, hardware, o.mix_signatures, p.iterations);
         options.hardware = source.hardware;
         if (o.plan && source.samples < static_cast<size_t>(p.iterations)) {
-          // Left to another rank, which needs what is stored and what the live log holds.
+          // Left to another rank, which needs what is stored.
           EvalJob& job = o.plan->job(static_cast<int>(si), static_cast<int>(oi), camera);
           job.search = true;
           job.done_hardware = source.hardware;
@@ -240,120 +261,73 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
             if (auto id = db.find_signature(options.tuning_key, source.hardware))
               for (const tuner::StoredSample& s : db.samples(*id))
                 job.done.push_back(stored_frame(s));
-          live.get(nullptr, objective, camera, default_choice, p.measure_repeats);
-          live.get(nullptr, objective, camera, native_choice, p.measure_repeats);
-          job.known = live.known(camera);
           searched_all = false;
           continue;
         }
         tuner::HybridTuner tuner(space, schema, options);
-        int64_t signature = tuner.signature_id();
-        size_t done = tuner.database()->samples(signature).size();
+        const int64_t signature = tuner.signature_id();
+        const size_t done = tuner.database()->samples(signature).size();
         for (size_t k = done; k < static_cast<size_t>(p.iterations); ++k)
           measure_search_frame(tuner, scene->states[ci], *costs, objective, camera);
+        const tuner::Config incumbent = tuner.best(scene->states[ci]);
+        SearchOutcome& search = searches[ci];
+        search = search_outcome(tuner.database()->samples(signature), space, incumbent);
         CameraRecord& r = records[ci];
         r.scene = name;
-        r.objective = obj;
+        r.objective = to_string(objective);
         r.camera = camera;
-        r.default_ms =
-            live.get(costs.get(), objective, r.camera, default_choice, p.measure_repeats);
-        r.native_ms = live.get(costs.get(), objective, r.camera, native_choice, p.measure_repeats);
-        for (const tuner::StoredSample& s : tuner.database()->samples(signature)) {
-          // A refused build is counted as a frame rendered with the default tree.
-          double ms = std::isfinite(s.cost) ? s.cost * 1000.0 : r.default_ms;
-          r.search_ms.push_back(ms);
-          data.samples[ci].emplace_back(s.config, ms);
-        }
+        for (const auto& [config, ms] : search.search.samples) r.search_ms.push_back(ms);
         r.search_ms.resize(std::min(r.search_ms.size(), static_cast<size_t>(p.iterations)));
-        tuner::Config incumbent = tuner.best(scene->states[ci]);
-        data.incumbents[ci] = incumbent;
         if (auto summary = tuner.summary(scene->states[ci])) r.converged = summary->converged;
         r.converged_config = to_accel_choice(incumbent).to_string();
-        r.converged_ms = live.get(costs.get(), objective, r.camera, to_accel_choice(incumbent),
-                                  p.measure_repeats);
         if (log)
-          log(fmt::format(
-              "{:<14} {:<6} camera {:>3}: search {:3} frames, default {:8.2f} ms, native {:8.2f} "
-              "ms, converged {:8.2f} ms ({:.3f}x default, {:.3f}x native)",
-              name, obj, ci, r.search_ms.size(), r.default_ms, r.native_ms, r.converged_ms,
-              r.search_speedup(), r.native_speedup()));
+          log(fmt::format("{:<14} {:<6} camera {:>3}: search {:3} frames, {} {}", name, r.objective,
+                          camera, r.search_ms.size(), r.converged ? "converged to" : "stopped at",
+                          r.converged_config));
       }
       // The predictors need every camera's search.
       if (!searched_all) continue;
 
-      // 2. Predictors trained on a random split, judged on the held-out cameras.
-      const size_t n = n_cameras;
-      const size_t n_train = std::clamp<size_t>(
-          static_cast<size_t>(std::lround(p.train_fraction * n)), 1, n > 1 ? n - 1 : 1);
-      std::vector<PredictionRecord> predictions;
-      for (int rep = 0; rep < p.repetitions && n > 1; ++rep) {
-        tuner::Rng rng(p.seed * 7919 + static_cast<uint64_t>(rep));
-        std::vector<size_t> order(n);
-        std::iota(order.begin(), order.end(), 0);
-        for (size_t i = n - 1; i > 0; --i) std::swap(order[i], order[rng.next_u64() % (i + 1)]);
+      // 2. Predictors trained on random splits, asked for the held-out cameras.
+      std::vector<CameraSearch> learned;
+      for (const SearchOutcome& s : searches) learned.push_back(s.search);
+      const std::vector<EvalPrediction> predictions =
+          predict_held_out_cameras(p, *scene, space, schema, learned);
+      std::vector<std::vector<std::string>> predicted(n_cameras);
+      for (const EvalPrediction& pr : predictions)
+        predicted[static_cast<size_t>(pr.camera)].push_back(pr.config);
 
-        tuner::NearestNeighbourPredictor nn;
-        tuner::GreedyGqPredictor gq(schema.size(), space.size(), tuner::GreedyGqOptions{},
-                                    p.seed + static_cast<uint64_t>(rep));
-        double worst = 0;
-        for (size_t t = 0; t < n_train; ++t)
-          for (const auto& [config, ms] : data.samples[order[t]]) worst = std::max(worst, ms);
-        std::vector<tuner::Config> candidates;
-        std::vector<std::vector<double>> candidate_points;
-        std::set<std::string> seen;
-        for (size_t t = 0; t < n_train; ++t) {
-          size_t ci = order[t];
-          const tuner::Config& best = data.incumbents[ci];
-          nn.set_best(static_cast<int64_t>(ci), scene->normalised[ci], best);
-          for (const auto& [config, ms] : data.samples[ci])
-            gq.train(scene->normalised[ci], space.encode(space.parse(config)),
-                     tuner::GreedyGqPredictor::reward(tuner::RewardKind::kNegLog, ms / 1000.0,
-                                                      worst / 1000.0));
-          if (seen.insert(best.to_string()).second) {
-            candidates.push_back(best);
-            candidate_points.push_back(space.encode(best));
-          }
+      // 3. One comparison per camera of everything the report compares there.
+      ComparisonLog comparison_log(eval_comparisons_path(paths), run_key);
+      std::vector<EvalComparison> comparisons(n_cameras);
+      bool compared_all = true;
+      for (size_t ci = 0; ci < n_cameras; ++ci) {
+        const int camera = static_cast<int>(ci);
+        CameraRecord& r = records[ci];
+        const std::vector<std::string> configs =
+            comparison_configs(r.converged_config, searches[ci].best_sample, predicted[ci]);
+        if (auto stored = comparison_log.find(camera, configs)) {
+          comparisons[ci] = *stored;
+        } else if (o.plan) {
+          o.plan->job(static_cast<int>(si), static_cast<int>(oi), camera).compare = configs;
+          compared_all = false;
+          continue;
+        } else {
+          comparisons[ci] = comparison_log.add(
+              camera,
+              measure_comparison(*costs, objective, camera, configs, comparison_options(p)));
         }
-        for (size_t v = n_train; v < n; ++v) {
-          size_t ci = order[v];
-          std::vector<std::pair<std::string, tuner::Config>> picks;
-          if (auto pred = nn.predict(scene->normalised[ci])) picks.emplace_back("nn", pred->config);
-          if (auto idx = gq.best_candidate(scene->normalised[ci], candidate_points))
-            picks.emplace_back("rbf", candidates[*idx]);
-          for (const auto& [predictor, config] : picks) {
-            PredictionRecord pr;
-            pr.scene = name;
-            pr.objective = obj;
-            pr.repetition = rep;
-            pr.camera = static_cast<int>(ci);
-            pr.predictor = predictor;
-            AccelChoice choice = to_accel_choice(config);
-            pr.config = choice.to_string();
-            pr.predicted_ms =
-                live.get(costs.get(), objective, pr.camera, choice, p.measure_repeats);
-            predictions.push_back(pr);
-          }
-        }
+        add_comparison(r, comparisons[ci]);
+        if (log) log(comparison_line(r, p));
       }
+      if (!compared_all) continue;
 
-      // 3. Best known per camera (over everything measured live), then the figures of merit.
-      for (CameraRecord& r : records) {
-        auto [best_ms, best_config] = live.best(r.camera);
-        r.best_ms = best_ms;
-        r.best_config = best_config;
-      }
-      for (PredictionRecord& pr : predictions) {
-        const CameraRecord& r = records[pr.camera];
-        pr.search_total_ms = accumulated_search_time(r.search_ms, r.converged_ms, p.iterations);
-        pr.speedup = prediction_speedup(r.search_ms, r.converged_ms, pr.predicted_ms, p.iterations);
-        pr.overhead_reduction = overhead_reduction(r.search_ms, r.converged_ms, pr.predicted_ms,
-                                                   r.best_ms, p.iterations);
-        pr.roofline = roofline_fraction(pr.predicted_ms, r.best_ms);
-        pr.native_speedup = pr.predicted_ms > 0 ? r.native_ms / pr.predicted_ms : 0.0;
-        pr.break_even = break_even_frame(r.search_ms, r.converged_ms, pr.predicted_ms);
-      }
+      // 4. The predictions' figures of merit.
       results.cameras.insert(results.cameras.end(), records.begin(), records.end());
-      results.predictions.insert(results.predictions.end(), predictions.begin(), predictions.end());
+      for (const EvalPrediction& pr : predictions) {
+        const size_t ci = static_cast<size_t>(pr.camera);
+        results.predictions.push_back(prediction_record(p, records[ci], comparisons[ci], pr));
+      }
     }
   }
   return results;

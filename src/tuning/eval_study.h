@@ -1,59 +1,25 @@
 // The evaluation study (DESIGN §6): per scene and objective, a full search at every camera of a
 // path (recorded in the tuning database, so an interrupted study resumes), then the predictors
-// trained on a random 80 % of the cameras and judged on the other 20 %, repeated.
+// trained on a random 80 % of the cameras and asked for the other 20 %, repeated, and at every
+// camera one interleaved comparison of everything the report compares there (the default,
+// native Embree, the search's result and best sample, each prediction), stored whole so that
+// an interrupted study resumes without mixing time windows.
 #pragma once
 
 #include <array>
 #include <functional>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "tuning/eval_job.h"
 #include "tuning/eval_profile.h"
+#include "tuning/eval_records.h"
+#include "tuning/eval_scene.h"
 
 namespace tuneray {
-
-// One camera's search and its side-by-side re-measurements.
-struct CameraRecord {
-  std::string scene;
-  std::string objective;
-  int camera = 0;
-  std::vector<double> search_ms;  // cost of every search frame, in order
-  std::string converged_config;   // the search's incumbent
-  bool converged = false;
-  double default_ms = 0;  // live medians, measured the same way for every configuration
-  double converged_ms = 0;
-  double native_ms = 0;  // native Embree, medium quality (`render --accel native`)
-  double best_ms = 0;    // best of every configuration measured live at this camera
-  std::string best_config;
-  double search_speedup() const { return converged_ms > 0 ? default_ms / converged_ms : 0.0; }
-  double native_speedup() const { return converged_ms > 0 ? native_ms / converged_ms : 0.0; }
-};
-
-// One predictor's choice for one validation camera in one repetition.
-struct PredictionRecord {
-  std::string scene;
-  std::string objective;
-  int repetition = 0;
-  int camera = 0;
-  std::string predictor;  // "nn" or "rbf"
-  std::string config;
-  double predicted_ms = 0;
-  double search_total_ms = 0;  // accumulated time of the search's frames
-  double speedup = 0;          // over the search, accumulated over the search's frame count
-  double native_speedup = 0;   // native Embree's live cost / predicted_ms
-  double overhead_reduction = 0;
-  double roofline = 0;
-  double break_even = 0;  // frames; infinity = never
-};
-
-struct EvalResults {
-  EvalProfile profile;
-  std::vector<CameraRecord> cameras;
-  std::vector<PredictionRecord> predictions;
-};
 
 struct EvalPaths {
   std::string out_dir;  // report, CSV, plots
@@ -82,10 +48,12 @@ struct EvalStudyOptions {
   // Accept samples of several signatures: a complete search of another machine is then used as
   // it is, an incomplete one is restarted on a measuring machine. Otherwise the study refuses.
   bool mix_signatures = false;
-  // When set, nothing is measured: every search the database lacks and every live cost the log
-  // lacks is added here instead, and the results hold only what was complete (all of it when
-  // the plan stays empty).
+  // When set, nothing is measured: every search the database lacks and every comparison the
+  // comparison log lacks is added here instead, and the results hold only what was complete
+  // (all of it when the plan stays empty).
   EvalPlan* plan = nullptr;
+  // Where frame costs come from (empty: make_eval_costs). Tests put noise they control here.
+  std::function<std::unique_ptr<EvalCostSource>(const EvalScene&, Objective)> make_costs;
 };
 
 // Runs (or resumes) the study. `log` receives progress lines.
@@ -94,11 +62,9 @@ EvalResults run_eval_study(const EvalProfile& profile, const EvalPaths& paths,
                            const EvalStudyOptions& options = {});
 
 // The tuning database the study uses (paths.db_path, or eval.db in the output folder) and the
-// live cost log.
+// log of finished comparisons (comparison_log.h).
 std::string eval_db_path(const EvalPaths& paths);
-std::string eval_live_costs_path(const EvalPaths& paths);
-// Key of a live cost in the log.
-std::string eval_live_key(const std::string& run_key, int camera, const std::string& config);
+std::string eval_comparisons_path(const EvalPaths& paths);
 
 // The refusal of a study whose ranks run on several kinds of machine, one line per machine.
 std::string mixed_machines_message(const std::vector<std::string>& machines);

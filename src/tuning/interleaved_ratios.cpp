@@ -89,6 +89,10 @@ InterleavedResult measure_interleaved(int count, int reference,
       result.ratios[i] = paired_ratio(result, i, reference);
       all_within &= result.ratios[i].relative_half_width() <= options.target_half_width;
     }
+    // A pair's interval is symmetric on a log scale, so i over j covers j over i.
+    for (int i = 0; i < count && options.every_pair; ++i)
+      for (int j = i + 1; j < count; ++j)
+        all_within &= paired_ratio(result, i, j).relative_half_width() <= options.target_half_width;
     if (all_within) {
       result.converged = true;
       break;

@@ -24,7 +24,7 @@ struct InterleavedResult {
   std::vector<RatioInterval> ratios;       // one per candidate; the reference's is exactly 1
   std::vector<std::vector<double>> costs;  // per candidate, one cost per round
   int rounds = 0;
-  bool converged = false;  // every interval within the target before the cap
+  bool converged = false;  // every watched interval within the target before the cap
 };
 
 // The paired ratio of candidate `i` to candidate `j` over the rounds of `result` (any two
@@ -35,6 +35,9 @@ struct InterleavedOptions {
   double target_half_width = 0.03;  // ±3 %
   int min_rounds = 3;
   int max_rounds = 30;
+  // Go on until the ratio between any two candidates is within the target, not only each
+  // candidate's ratio to the reference: for a report that takes ratios between any of them.
+  bool every_pair = false;
 };
 
 // `measure(i)` returns one cost (> 0, e.g. ms) of candidate i; `count` candidates, ratios taken

@@ -17,7 +17,7 @@ std::map<std::string, std::string> report_files(const fs::path& out) {
   for (const auto& entry : fs::recursive_directory_iterator(out)) {
     if (!entry.is_regular_file()) continue;
     const std::string name = entry.path().filename().string();
-    if (name.rfind("eval.db", 0) == 0 || name == "live_costs.tsv" ||
+    if (name.rfind("eval.db", 0) == 0 || name == "comparisons.tsv" ||
         name.find(".partial-") != std::string::npos)
       continue;
     files[fs::relative(entry.path(), out).string()] = read_all(entry.path());

@@ -73,21 +73,33 @@ TEST(Eval, QuickProfileProducesAConsistentReport) {
   const auto& sh = summary[0];
   for (size_t i = 1; i < summary.size(); ++i) {
     const auto& row = summary[i];
-    auto c = [&](const char* name) { return row[col(sh, name)]; };
+    auto c = [&](const std::string& name) { return row[col(sh, name)]; };
+    // A ratio with its typical 95 % interval: "1.234 [1.200, 1.270]".
+    auto ci = [&](const std::string& ratio, const std::string& bounds) {
+      return c(ratio) + " [" + c(bounds + "_low") + ", " + c(bounds + "_high") + "]";
+    };
     std::string expected =
-        "| " + c("scene") + " | " + c("cameras") + " | " + c("search_speedup_median") + " | " +
-        c("search_native_speedup_median") + " | " + c("nn_speedup_geomean") + " | " +
-        c("rbf_speedup_geomean") + " | " + c("nn_overhead_reduction_median") + " | " +
-        c("rbf_overhead_reduction_median") + " | " + c("nn_roofline_mean") + " | " +
-        c("rbf_roofline_mean") + " | " + c("nn_break_even_median") + " (" + c("nn_never") + ") | " +
+        "| " + c("scene") + " | " + c("cameras") + " | " + c("within_target") + " of " +
+        c("cameras") + ", median " + c("rounds_median") + " rounds | " +
+        ci("search_speedup_median", "search_speedup") + " | " +
+        ci("search_native_speedup_median", "search_native_speedup") + " | " +
+        c("nn_speedup_geomean") + " | " + c("rbf_speedup_geomean") + " | " +
+        c("nn_overhead_reduction_median") + " | " + c("rbf_overhead_reduction_median") + " | " +
+        ci("nn_roofline_mean", "nn_roofline") + " | " + ci("rbf_roofline_mean", "rbf_roofline") +
+        " | " + c("nn_break_even_median") + " (" + c("nn_never") + ") | " +
         c("rbf_break_even_median") + " (" + c("rbf_never") + ") | " +
-        c("nn_native_speedup_median") + " | " + c("rbf_native_speedup_median") + " |\n";
+        ci("nn_native_speedup_median", "nn_native_speedup") + " | " +
+        ci("rbf_native_speedup_median", "rbf_native_speedup") + " |\n";
     EXPECT_NE(report.find(expected), std::string::npos) << "missing in report: " << expected;
   }
   EXPECT_NE(report.find("search speedup over native Embree"), std::string::npos);
+  EXPECT_NE(report.find("comparisons whose every 95 % interval reached ±3 % before the cap of"),
+            std::string::npos);
 
   // The summary's speedups over default and over native are the medians of the per-camera
-  // values in cameras.csv, and each camera's over-native value is its native / converged cost.
+  // values in cameras.csv, and each camera's over-native value is its native / converged cost
+  // (geometric means of the camera's comparison, whose ratio is the paired ratio), inside its
+  // interval. Every comparison ran at least its minimum and at most its cap of rounds.
   auto cameras = read_csv(out / "cameras.csv");
   const auto& ch = cameras[0];
   std::map<std::string, std::vector<double>> speedups, native_speedups;
@@ -101,6 +113,19 @@ TEST(Eval, QuickProfileProducesAConsistentReport) {
     const double converged_ms = std::stod(row[col(ch, "converged_ms")]);
     EXPECT_GT(native_ms, 0.0);
     EXPECT_NEAR(native, native_ms / converged_ms, 2e-3 * (1 + native)) << key;
+    EXPECT_LE(std::stod(row[col(ch, "native_speedup_low")]), native) << key;
+    EXPECT_GE(std::stod(row[col(ch, "native_speedup_high")]), native) << key;
+    const double search = std::stod(row[col(ch, "search_speedup")]);
+    EXPECT_LE(std::stod(row[col(ch, "search_speedup_low")]), search) << key;
+    EXPECT_GE(std::stod(row[col(ch, "search_speedup_high")]), search) << key;
+    const int rounds = std::stoi(row[col(ch, "rounds")]);
+    EXPECT_GE(rounds, 3) << key;
+    EXPECT_LE(rounds, 30) << key;
+    // Below the cap, the comparison stopped because every interval was within ±3 %.
+    if (rounds < 30) {
+      EXPECT_EQ(row[col(ch, "ci_within_target")], "1") << key;
+    }
+    EXPECT_LE(std::stod(row[col(ch, "best_ms")]), converged_ms) << key;
   }
   auto median_of = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());

@@ -1,8 +1,8 @@
 // `eval --synthetic-costs` killed with SIGKILL at random moments and resumed with the same
-// command finishes with the same report as an uninterrupted run: the tuning database, the live
-// cost log and the report files survive any kill, and a resumed study repeats no decision and
-// counts no frame twice. Synthetic costs make every run's numbers identical, so the final files
-// are compared byte for byte.
+// command finishes with the same report as an uninterrupted run: the tuning database, the
+// comparison log and the report files survive any kill, and a resumed study repeats no decision,
+// counts no frame twice and measures a comparison cut short again whole. Synthetic costs make every
+// run's numbers identical, so the final files are compared byte for byte.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -197,7 +197,7 @@ KilledRun run_and_kill_worker(const std::vector<std::string>& args, const std::s
 
 TEST_F(EvalMpi, AKilledRankLosesNothingStoredAndTheRunResumesWithOtherRanks) {
   // More cameras and frames than the profile's, so that the kill lands mid-study; the BVH
-  // alone, so that the predictors pick configurations to measure in a second round of jobs.
+  // alone, so that the comparisons of the second round of jobs have predictions to measure.
   const std::vector<std::string> more = {"--objective",  "render", "--cameras",   "24",
                                          "--iterations", "40",     "--tuned-only"};
   const fs::path out = path("eval");

@@ -16,13 +16,12 @@ TEST(EvalMetrics, AccumulatedSearchTimeExtendsWithTheConvergedCost) {
   EXPECT_DOUBLE_EQ(accumulated_search_time(kSearch, 1.0, 2), 5.0);
 }
 
-TEST(EvalMetrics, SpeedupOverheadAndRoofline) {
+TEST(EvalMetrics, SpeedupAndOverhead) {
   // Prediction at 1.2 ms for 5 frames = 6.0 ms against the search's 8.5 ms.
   EXPECT_DOUBLE_EQ(prediction_speedup(kSearch, 1.0, 1.2, 5), 8.5 / 6.0);
   // Best 1.0: search overhead 3.5, prediction overhead 1.0 → reduction 1 - 1/3.5.
   EXPECT_DOUBLE_EQ(overhead_reduction(kSearch, 1.0, 1.2, 1.0, 5), 1.0 - 1.0 / 3.5);
   EXPECT_DOUBLE_EQ(overhead_reduction(kSearch, 1.0, 1.0, 1.0, 5), 1.0);
-  EXPECT_DOUBLE_EQ(roofline_fraction(1.25, 1.0), 0.8);
 }
 
 TEST(EvalMetrics, BreakEvenIsWhereTheSearchHasPaidForItsExploration) {

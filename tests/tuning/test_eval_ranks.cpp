@@ -31,8 +31,7 @@ EvalProfile small_profile() {
   p.repetitions = 2;
   p.synthetic_costs = true;
   // With native Embree in the space every search converges to it at these sizes and the
-  // predictors pick nothing new; the BVH alone gives them new configurations to measure (a
-  // second round of jobs).
+  // predictors pick nothing new; the BVH alone gives the comparisons predictions to measure.
   p.native_in_space = false;
   return p;
 }
@@ -92,6 +91,12 @@ void expect_same_results(const EvalResults& a, const EvalResults& b) {
     EXPECT_EQ(x.native_ms, y.native_ms);
     EXPECT_EQ(x.best_ms, y.best_ms);
     EXPECT_EQ(x.best_config, y.best_config);
+    EXPECT_EQ(x.search_speedup.ratio, y.search_speedup.ratio);
+    EXPECT_EQ(x.search_speedup.low, y.search_speedup.low);
+    EXPECT_EQ(x.native_speedup.high, y.native_speedup.high);
+    EXPECT_EQ(x.candidates, y.candidates);
+    EXPECT_EQ(x.rounds, y.rounds);
+    EXPECT_EQ(x.within_target, y.within_target);
   }
   ASSERT_EQ(a.predictions.size(), b.predictions.size());
   for (size_t i = 0; i < a.predictions.size(); ++i) {
@@ -102,6 +107,8 @@ void expect_same_results(const EvalResults& a, const EvalResults& b) {
     EXPECT_EQ(x.config, y.config);
     EXPECT_EQ(x.predicted_ms, y.predicted_ms);
     EXPECT_EQ(x.speedup, y.speedup);
+    EXPECT_EQ(x.roofline.ratio, y.roofline.ratio);
+    EXPECT_EQ(x.native_speedup.ratio, y.native_speedup.ratio);
   }
 }
 
@@ -161,7 +168,7 @@ TEST_F(EvalRanks, ResumesWithAnotherRankCountAndRedoesNothingStored) {
   RankRun resumed;
   resumed.jobs_sent = &resumed_jobs;
   expect_same_results(reference, run_on_ranks(p, paths("resume"), resumed));
-  EXPECT_GT(fresh_jobs, 2 * 2 * 5);  // the searches, then the predictors' picks
+  EXPECT_EQ(fresh_jobs, 2 * (2 * 2 * 5));  // the searches, then the comparisons
   EXPECT_EQ(resumed_jobs, fresh_jobs - 7);
 }
 
@@ -265,8 +272,7 @@ TEST(EvalJobMessages, RoundTripExactly) {
   job.search = true;
   job.done_hardware = "cpu \"x\" x2";
   job.done = {{"a=1", true, 0.1 + 0.2, 1.0 / 3.0, 2e-300}, {"b=2", false, 0, 5, 6}};
-  job.measure = {"backend=native"};
-  job.known = {"x", "y"};
+  job.compare = {"backend=native", "x"};
   const EvalJob j = parse_eval_job(to_json(job));
   EXPECT_EQ(j.scene, 1);
   EXPECT_EQ(j.camera, 4);
@@ -277,18 +283,22 @@ TEST(EvalJobMessages, RoundTripExactly) {
   EXPECT_EQ(j.done[0].build_ms, 1.0 / 3.0);
   EXPECT_EQ(j.done[0].render_ms, 2e-300);
   EXPECT_FALSE(j.done[1].ok);
-  EXPECT_EQ(j.measure, job.measure);
-  EXPECT_EQ(j.known, job.known);
+  EXPECT_EQ(j.compare, job.compare);
 
   EvalJobResult r;
   r.camera = 3;
   r.hardware = "h";
   r.frames = job.done;
-  r.live = {{"c", 1.0 / 7.0}};
+  r.comparison = EvalComparison{{"c", "d"}, {{1.0 / 7.0, 2.5}, {0.1 + 0.2, 3e-300}}, true};
   const EvalJobResult q = parse_eval_job_result(to_json(r));
   EXPECT_EQ(q.camera, 3);
   EXPECT_EQ(q.frames.size(), 2u);
-  EXPECT_EQ(q.live, r.live);
+  ASSERT_TRUE(q.comparison.has_value());
+  EXPECT_EQ(q.comparison->configs, r.comparison->configs);
+  EXPECT_EQ(q.comparison->costs, r.comparison->costs);  // bit for bit
+  EXPECT_TRUE(q.comparison->within_target);
+  r.comparison.reset();
+  EXPECT_FALSE(parse_eval_job_result(to_json(r)).comparison.has_value());
   EXPECT_THROW(parse_eval_job_result("{\"scene\": 1}"), std::runtime_error);
 }
 

@@ -104,6 +104,35 @@ TEST(MeasureInterleaved, AnyTwoCandidatesCompareOverTheSameRounds) {
   EXPECT_THROW(paired_ratio(r, 0, 3), std::invalid_argument);
 }
 
+TEST(MeasureInterleaved, EveryPairWaitsForTheRatiosBetweenCandidatesToo) {
+  // Candidates 1 and 2 wobble in opposite directions by ±0.8 % around the reference each round:
+  // each ratio to the reference is within ±3 % after 3 rounds, the ratio between 1 and 2 (twice
+  // the wobble) is not.
+  auto wobbling = [](bool every_pair, int cap) {
+    int calls = 0;
+    InterleavedOptions o;
+    o.every_pair = every_pair;
+    o.max_rounds = cap;
+    return measure_interleaved(
+        3, 0,
+        [&](int i) {
+          const double sign = (calls++ / 3) % 2 ? -1.0 : 1.0;
+          return i == 0 ? 1.0 : std::exp((i == 1 ? 0.008 : -0.008) * sign) * (i == 1 ? 2 : 3);
+        },
+        o);
+  };
+  const InterleavedResult to_reference = wobbling(false, 30);
+  EXPECT_TRUE(to_reference.converged);
+  EXPECT_EQ(to_reference.rounds, 3);
+  EXPECT_GT(paired_ratio(to_reference, 1, 2).relative_half_width(), 0.03);
+  const InterleavedResult pairs = wobbling(true, 30);
+  EXPECT_TRUE(pairs.converged);
+  EXPECT_GT(pairs.rounds, 3);
+  EXPECT_LE(paired_ratio(pairs, 1, 2).relative_half_width(), 0.03);
+  EXPECT_LE(paired_ratio(pairs, 2, 1).relative_half_width(), 0.03);
+  EXPECT_FALSE(wobbling(true, 3).converged);
+}
+
 TEST(MeasureInterleaved, RefusesBadArgumentsAndBadCosts) {
   auto one = [](int) { return 1.0; };
   EXPECT_THROW(measure_interleaved(2, 2, one), std::invalid_argument);

@@ -1,0 +1,59 @@
+// What the study reports per camera and per prediction. Every cost and ratio below the search's
+// own frames comes from the camera's comparison (eval_comparison.h): all configurations
+// compared at a camera measured in one interleaved window, so each ratio carries its 95 %
+// confidence interval.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tuning/eval_profile.h"
+#include "tuning/interleaved_ratios.h"
+
+namespace tuneray {
+
+// One camera's search and its comparison.
+struct CameraRecord {
+  std::string scene;
+  std::string objective;
+  int camera = 0;
+  std::vector<double> search_ms;  // cost of every search frame, in order
+  std::string converged_config;   // the search's incumbent
+  bool converged = false;
+  // Geometric means over the comparison's rounds (their ratios are the paired ratios below).
+  double default_ms = 0;
+  double converged_ms = 0;
+  double native_ms = 0;  // native Embree, medium quality (`render --accel native`)
+  double best_ms = 0;    // the fastest configuration of the comparison: the best known
+  std::string best_config;
+  RatioInterval search_speedup;  // default / converged
+  RatioInterval native_speedup;  // native / converged
+  int candidates = 0;            // distinct configurations compared
+  int rounds = 0;
+  bool within_target = false;  // every ratio's interval reached the target before the cap
+};
+
+// One predictor's choice for one validation camera in one repetition.
+struct PredictionRecord {
+  std::string scene;
+  std::string objective;
+  int repetition = 0;
+  int camera = 0;
+  std::string predictor;  // "nn" or "rbf"
+  std::string config;
+  double predicted_ms = 0;       // geometric mean over the camera's comparison
+  double search_total_ms = 0;    // accumulated time of the search's frames
+  double speedup = 0;            // over the search, accumulated over the search's frame count
+  RatioInterval native_speedup;  // native Embree / predicted
+  double overhead_reduction = 0;
+  RatioInterval roofline;  // best known / predicted
+  double break_even = 0;   // frames; infinity = never
+};
+
+struct EvalResults {
+  EvalProfile profile;
+  std::vector<CameraRecord> cameras;
+  std::vector<PredictionRecord> predictions;
+};
+
+}  // namespace tuneray
