@@ -42,17 +42,17 @@ const std::map<std::string, std::optional<std::string>> kMpiEnvironment = {
     {"ASAN_OPTIONS", "detect_leaks=0"},
 };
 
+// Marks this test process's ranks, so the kill below never hits the ranks of another MPI test
+// that ctest runs at the same time.
+std::string rank_mark() {
+  return "TUNERAY_RANK_TEST=" + std::to_string(getpid());
+}
+
 std::vector<std::string> mpirun_args(int ranks, const std::vector<std::string>& eval_args) {
   // --bind-to none: tuneray pins its ranks itself (rank_cores.h).
-  std::vector<std::string> argv = {TUNERAY_MPIEXEC,
-                                   "--oversubscribe",
-                                   "--bind-to",
-                                   "none",
-                                   "-x",
-                                   "TUNERAY_RANK_TEST=1",
-                                   "-n",
-                                   std::to_string(ranks),
-                                   testing::tuneray_binary()};
+  std::vector<std::string> argv = {
+      TUNERAY_MPIEXEC,       "--oversubscribe",        "--bind-to", "none", "-x", rank_mark(), "-n",
+      std::to_string(ranks), testing::tuneray_binary()};
   argv.insert(argv.end(), eval_args.begin(), eval_args.end());
   return argv;
 }
@@ -182,7 +182,7 @@ KilledRun run_and_kill_worker(const std::vector<std::string>& args, const std::s
       // Rank 1 is the process whose environment says so (and carries our mark).
       for (const auto& entry : fs::directory_iterator("/proc")) {
         const std::string env = testing::read_all(entry.path() / "environ");
-        if (env.find("TUNERAY_RANK_TEST=1") != std::string::npos &&
+        if (env.find(rank_mark() + '\0') != std::string::npos &&
             env.find(std::string("OMPI_COMM_WORLD_RANK=1") + '\0') != std::string::npos) {
           kill(std::stoi(entry.path().filename().string()), SIGKILL);
           run.killed_worker = true;
