@@ -21,8 +21,6 @@ class LineLog {
   // start with the prefix or either holds a line break, or the value a tab (the line would not
   // read back as written); std::runtime_error when the file cannot be appended to.
   void add(const std::string& key, const std::string& value);
-  // Every known entry, by key.
-  const std::map<std::string, std::string>& entries() const { return entries_; }
 
  private:
   std::string path_, prefix_;
