@@ -76,13 +76,11 @@ int run_tune(TuneArgs& a) {
       "speedup over native Embree (medium): median {:.3f}, geometric mean {:.3f}; "
       "tuned BVH chosen at {} of {} cameras\n",
       sum.vs_native_median, sum.vs_native_geomean, sum.tuned, report.cameras.size());
-  int capped = 0;
-  for (const auto& c : report.cameras) capped += !c.compare_within_target;
-  if (capped > 0)
+  if (sum.capped > 0)
     fmt::print(
         "* {} of {} cameras reached the round cap with an interval wider than ±{:.0f} %: the "
         "machine was too noisy to pin their ratios down\n",
-        capped, report.cameras.size(), 100 * a.options.compare_target);
+        sum.capped, report.cameras.size(), 100 * a.options.compare_target);
   if (!a.json.empty()) {
     write_text_file(
         a.json,

@@ -12,6 +12,7 @@ TuneSummary summarize_tune(const TuneReport& report) {
     vs_native.push_back(c.vs_native());
     s.searched += c.mode == "search";
     s.tuned += c.backend == "tuned";
+    s.capped += !c.compare_within_target;
   }
   s.speedup_median = median(speedups);
   s.speedup_geomean = geometric_mean(speedups);

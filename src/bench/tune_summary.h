@@ -14,6 +14,7 @@ struct TuneSummary {
   double vs_native_median = 0, vs_native_geomean = 0;  // over native Embree
   int searched = 0;  // cameras where the tuner searched rather than predicted
   int tuned = 0;     // cameras where the tuned BVH (not native) was chosen
+  int capped = 0;    // cameras whose comparison reached the round cap before the target
 };
 TuneSummary summarize_tune(const TuneReport& report);
 

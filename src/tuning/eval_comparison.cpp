@@ -82,16 +82,24 @@ EvalComparison measure_comparison(EvalCostSource& costs, Objective objective, in
                                   const InterleavedOptions& options) {
   std::vector<AccelChoice> choices;
   for (const std::string& config : configs) choices.push_back(parse_accel_choice(config));
+  return measure_comparison(
+      configs, objective, [&](size_t i) { return costs.frame(choices[i], camera); },
+      fmt::format("camera {}", camera), options);
+}
+
+EvalComparison measure_comparison(const std::vector<std::string>& configs, Objective objective,
+                                  const std::function<FrameCost(size_t)>& frame,
+                                  const std::string& what, const InterleavedOptions& options) {
   auto frame_ms = [&](size_t i) {
-    const FrameCost cost = costs.frame(choices[i], camera);
+    const FrameCost cost = frame(i);
     if (!cost.ok)
-      throw std::runtime_error(fmt::format("camera {}: comparing {}: the build was refused: {}",
-                                           camera, configs[i], cost.error));
+      throw std::runtime_error(
+          fmt::format("{}: comparing {}: the build was refused: {}", what, configs[i], cost.error));
     return cost.cost_ms(objective);
   };
-  for (size_t i = 0; i < choices.size(); ++i) frame_ms(i);
+  for (size_t i = 0; i < configs.size(); ++i) frame_ms(i);
   const InterleavedResult measured = measure_interleaved(
-      static_cast<int>(choices.size()), 0, [&](int i) { return frame_ms(static_cast<size_t>(i)); },
+      static_cast<int>(configs.size()), 0, [&](int i) { return frame_ms(static_cast<size_t>(i)); },
       options);
   EvalComparison c;
   c.configs = configs;

@@ -8,6 +8,7 @@
 // reads a comparison back derives exactly what the run that measured it did.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,11 @@ InterleavedOptions comparison_options(const EvalProfile& p);
 EvalComparison measure_comparison(EvalCostSource& costs, Objective objective, int camera,
                                   const std::vector<std::string>& configs,
                                   const InterleavedOptions& options);
+// The same with any source of frames (`tune` measures its yardsticks this way): `frame(i)` renders
+// one frame of configs[i]; `what` names the comparison in the refused-build error.
+EvalComparison measure_comparison(const std::vector<std::string>& configs, Objective objective,
+                                  const std::function<FrameCost(size_t)>& frame,
+                                  const std::string& what, const InterleavedOptions& options);
 
 // Exact both ways (every cost keeps its bits). Parsing throws std::runtime_error on malformed
 // text and on costs that a comparison cannot hold (rounds of different lengths, a cost that is

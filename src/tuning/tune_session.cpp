@@ -11,7 +11,7 @@
 #include "scene/load.h"
 #include "tuner/hybrid_tuner.h"
 #include "tuning/bvh_space.h"
-#include "tuning/interleaved_ratios.h"
+#include "tuning/eval_comparison.h"
 #include "tuning/render_space.h"
 #include "tuning/stats.h"
 #include "tuning/tuner_state.h"
@@ -89,10 +89,11 @@ TuneReport run_tune_session(const TuneOptions& o,
   TuneReport report;
   TuneProgress progress;
   progress.frames_total = o.iterations * static_cast<int>(cameras.size());
-  // The yardsticks and the chosen configuration in interleaved rounds (interleaved_ratios.h), so
-  // that a drift of the shared machine's load hits all of them alike. Identical candidates (the
-  // chosen configuration may be the default or native itself) are one configuration measured
-  // once: a configuration compared with itself reports exactly 1, not the machine's noise.
+  // The yardsticks and the chosen configuration in one comparison, eval's protocol
+  // (eval_comparison.h): interleaved rounds, so that a drift of the shared machine's load hits
+  // all of them alike. Identical candidates (the chosen configuration may be the default or
+  // native itself) are one configuration measured once: compared with itself it reports
+  // exactly 1, not the machine's noise.
   using Candidate = std::pair<AccelChoice, WorkSizes>;
   InterleavedOptions compare_options;
   compare_options.min_rounds = std::max(2, o.baseline_repeats);
@@ -102,41 +103,29 @@ TuneReport run_tune_session(const TuneOptions& o,
   // Fills the yardsticks of `r` from candidates {default, native, chosen}.
   auto compare = [&](const std::vector<Candidate>& candidates, const CameraDesc& camera,
                      CameraTuneResult& r) {
-    std::vector<Candidate> unique;
-    std::vector<int> slot;
+    std::vector<std::string> names, configs;
+    std::vector<Candidate> measured;
     for (const Candidate& c : candidates) {
-      auto it = std::find(unique.begin(), unique.end(), c);
-      slot.push_back(static_cast<int>(it - unique.begin()));
-      if (it == unique.end()) unique.push_back(c);
+      names.push_back(c.first.to_string() + "," + c.second.to_string());
+      if (std::find(configs.begin(), configs.end(), names.back()) != configs.end()) continue;
+      configs.push_back(names.back());
+      measured.push_back(c);
     }
-    InterleavedResult result = measure_interleaved(
-        static_cast<int>(unique.size()), 0,
-        [&](int i) {
-          FrameCost cost = bench.run(unique[i].first, unique[i].second, camera);
-          if (!cost.ok)
-            throw std::runtime_error("tune: the configuration " + unique[i].first.to_string() +
-                                     " was refused while re-measured: " + cost.error);
-          return cost.cost_ms(o.objective);
-        },
-        compare_options);
-    auto mean_ms = [&](int candidate) { return geometric_mean(result.costs[slot[candidate]]); };
-    // The interval of candidate a's cost over b's (the ratio itself is mean_ms(a) / mean_ms(b)).
-    auto interval = [&](int a, int b, double& low, double& high) {
-      if (slot[a] == slot[b]) {
-        low = high = 1.0;
-        return;
-      }
-      RatioInterval ri = paired_ratio(result, slot[a], slot[b]);
-      low = ri.low;
-      high = ri.high;
-    };
-    r.default_ms = mean_ms(0);
-    r.native_ms = mean_ms(1);
-    r.chosen_ms = mean_ms(2);
-    interval(0, 2, r.speedup_low, r.speedup_high);
-    interval(1, 2, r.vs_native_low, r.vs_native_high);
-    r.compare_rounds = result.rounds;
-    r.compare_within_target = result.converged;
+    const EvalComparison c = measure_comparison(
+        configs, o.objective,
+        [&](size_t i) { return bench.run(measured[i].first, measured[i].second, camera); },
+        fmt::format("tune, camera {}", r.camera), compare_options);
+    r.default_ms = c.cost_ms(names[0]);
+    r.native_ms = c.cost_ms(names[1]);
+    r.chosen_ms = c.cost_ms(names[2]);
+    const RatioInterval speedup = c.ratio(names[0], names[2]);
+    const RatioInterval vs_native = c.ratio(names[1], names[2]);
+    r.speedup_low = speedup.low;
+    r.speedup_high = speedup.high;
+    r.vs_native_low = vs_native.low;
+    r.vs_native_high = vs_native.high;
+    r.compare_rounds = c.rounds();
+    r.compare_within_target = c.within_target;
   };
   for (size_t ci = 0; ci < cameras.size(); ++ci) {
     tuner::State state = to_tuner_state(compute_indicators(scene_indicators, cameras[ci]));
