@@ -20,7 +20,8 @@ struct CameraRecord {
   std::vector<double> search_ms;  // cost of every search frame, in order
   std::string converged_config;   // the search's incumbent
   bool converged = false;
-  // Geometric means over the comparison's rounds (their ratios are the paired ratios below).
+  // From the comparison (EvalComparison::cost_ms): the default's median cost times the median
+  // per-round ratio to it (over the default, their ratios are the paired ratios below).
   double default_ms = 0;
   double converged_ms = 0;
   double native_ms = 0;  // native Embree, medium quality (`render --accel native`)
@@ -41,7 +42,7 @@ struct PredictionRecord {
   int camera = 0;
   std::string predictor;  // "nn" or "rbf"
   std::string config;
-  double predicted_ms = 0;       // geometric mean over the camera's comparison
+  double predicted_ms = 0;       // EvalComparison::cost_ms of the camera's comparison
   double search_total_ms = 0;    // accumulated time of the search's frames
   double speedup = 0;            // over the search, accumulated over the search's frame count
   RatioInterval native_speedup;  // native Embree / predicted

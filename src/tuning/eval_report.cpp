@@ -306,10 +306,11 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
             "converged configuration and best sample, every prediction) is re-measured in one "
             "comparison: an untimed frame of each, then rounds of one frame each in rotating "
             "order, from {} rounds until the 95 % confidence interval of the ratio between any "
-            "two of them is within ±{:g} %, at most {} rounds. Costs are geometric means over "
-            "the rounds, ratios the geometric means of the per-round ratios, shown with their "
-            "95 % interval in brackets (over cameras: the median, or for the roofline the mean, "
-            "of the single comparisons' bounds).\n\n",
+            "two of them is within ±{:g} %, at most {} rounds. Ratios are the medians of the "
+            "per-round ratios, shown with their distribution-free 95 % interval (order "
+            "statistics of binomial ranks) in brackets (over cameras: the median, or for the "
+            "roofline the mean, of the single comparisons' bounds); costs are the default "
+            "configuration's median cost times the median per-round ratio to it.\n\n",
             p.cameras, p.iterations, p.spp, p.width, p.height, p.max_bounces,
             p.wavefront ? "wavefront" : "tile",
             p.native_in_space ? "the backend (tuned BVH or native Embree) and the BVH parameters"

@@ -85,8 +85,9 @@ TEST_F(EvalStudyComparisons, ALoadChangingFromRoundToRoundMovesNoRatio) {
     EXPECT_EQ(l.best_config, q.best_config);
     EXPECT_EQ(l.rounds, p_.compare_min_rounds);  // a common load leaves no spread
     EXPECT_TRUE(l.within_target);
-    // The costs carry the load of their rounds; their ratios do not.
-    EXPECT_GT(l.default_ms, 1.5 * q.default_ms);
+    // The costs carry the load of their rounds (the median of 2, 1.3, 3.1, 0.9, 1.7 and 1 is
+    // 1.5); their ratios do not.
+    EXPECT_NEAR(l.default_ms, 1.5 * q.default_ms, 1e-12 * q.default_ms);
     EXPECT_NEAR(q.search_speedup.ratio,
                 synthetic_ms(AccelChoice::tuned(BvhConfig{}).to_string(), q.camera) /
                     synthetic_ms(q.converged_config, q.camera),
