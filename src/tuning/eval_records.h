@@ -18,7 +18,15 @@ struct CameraRecord {
   std::string objective;
   int camera = 0;
   std::vector<double> search_ms;  // cost of every search frame, in order
-  std::string converged_config;   // the search's incumbent
+  // The yardstick measured in both windows: the default configuration, which the search measures
+  // in its first frame and the comparison in every round. search_window_load = the search's
+  // frame(s) of it / the comparison's cost of it: above 1, the machine was slower while the
+  // search ran than during the comparison, and every search frame with it. Not used to calibrate
+  // anything (one frame is no yardstick for 80; docs/results.md); 0 when the search has no
+  // frame of the default.
+  double search_default_ms = 0;
+  double search_window_load = 0;
+  std::string converged_config;  // the search's incumbent
   bool converged = false;
   // From the comparison (EvalComparison::cost_ms): the default's median cost times the median
   // per-round ratio to it (over the default, their ratios are the paired ratios below).

@@ -128,6 +128,12 @@ TEST(Eval, QuickProfileProducesAConsistentReport) {
       EXPECT_EQ(row[col(ch, "ci_within_target")], "1") << key;
     }
     EXPECT_LE(std::stod(row[col(ch, "best_ms")]), converged_ms) << key;
+    // Every search measures the default first: the yardstick of both windows.
+    const double search_default_ms = std::stod(row[col(ch, "search_default_ms")]);
+    EXPECT_GT(search_default_ms, 0.0) << key;
+    EXPECT_NEAR(std::stod(row[col(ch, "search_window_load")]), search_default_ms / default_ms,
+                2e-3 * (1 + search_default_ms / default_ms))
+        << key;
   }
   auto median_of = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
