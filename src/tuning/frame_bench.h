@@ -53,10 +53,12 @@ class FrameBench {
  public:
   // Tuned trees kept under objective `render`, the one rendered with included. Enough for every
   // tuned candidate of a comparison (default, converged, best sample and the distinct
-  // predictions: at most 7 in the standard study, about 9 in the paper's, whose cameras are held
+  // predictions: at most 7 in the standard study, 9 seen in the paper's, whose cameras are held
   // out 3 times on average); with more candidates than trees, least-recently-used eviction
   // under round-robin frames would rebuild at every frame. Bounded because a search tries a new
-  // configuration nearly every frame, and a tree of a shared scene takes tens of megabytes.
+  // configuration nearly every frame, and trees are large: the default tree of bmw-m6 (0.8 M
+  // triangles) takes 81 MiB, so 16 trees of the largest shared scene take 1-2 GiB (per
+  // process: MPI ranks on one node each keep their own).
   static constexpr size_t kTunedTrees = 16;
 
   FrameBench(const Scene& scene, const RenderSettings& settings, uint32_t spp, Objective objective);
