@@ -55,13 +55,18 @@ int run_tune(TuneArgs& a) {
       });
   bar.finish();
   TuneSummary sum = summarize_tune(report);
-  fmt::print("\n{:>6} {:>8} {:>11} {:>11} {:>11} {:>8} {:>9} {:>14}  {}\n", "camera", "mode",
-             "default ms", "native ms", "chosen ms", "speedup", "vs native", "frames total",
-             "configuration");
+  fmt::print("\n{:>6} {:>8} {:>11} {:>11} {:>11} {:>8} {:>15} {:>9} {:>15} {:>6} {:>14}  {}\n",
+             "camera", "mode", "default ms", "native ms", "chosen ms", "speedup", "95 % interval",
+             "vs native", "95 % interval", "rounds", "frames total", "configuration");
   for (const auto& c : report.cameras)
-    fmt::print("{:>6} {:>8} {:>11.2f} {:>11.2f} {:>11.2f} {:>8.3f} {:>9.3f} {:>14.1f}  {}\n",
-               c.camera, c.mode, c.default_ms, c.native_ms, c.chosen_ms, c.speedup(), c.vs_native(),
-               c.accumulated_ms, c.config);
+    fmt::print(
+        "{:>6} {:>8} {:>11.2f} {:>11.2f} {:>11.2f} {:>8.3f} {:>15} {:>9.3f} {:>15} {:>6} "
+        "{:>14.1f}  {}\n",
+        c.camera, c.mode, c.default_ms, c.native_ms, c.chosen_ms, c.speedup(),
+        fmt::format("[{:.3f}, {:.3f}]", c.speedup_low, c.speedup_high), c.vs_native(),
+        fmt::format("[{:.3f}, {:.3f}]", c.vs_native_low, c.vs_native_high),
+        fmt::format("{}{}", c.compare_rounds, c.compare_within_target ? "" : "*"), c.accumulated_ms,
+        c.config);
   fmt::print(
       "\nspeedup over the default configuration: median {:.3f}, geometric mean {:.3f}; "
       "{} of {} cameras searched, {} failed builds\n",
@@ -71,6 +76,13 @@ int run_tune(TuneArgs& a) {
       "speedup over native Embree (medium): median {:.3f}, geometric mean {:.3f}; "
       "tuned BVH chosen at {} of {} cameras\n",
       sum.vs_native_median, sum.vs_native_geomean, sum.tuned, report.cameras.size());
+  int capped = 0;
+  for (const auto& c : report.cameras) capped += !c.compare_within_target;
+  if (capped > 0)
+    fmt::print(
+        "* {} of {} cameras reached the round cap with an interval wider than ±{:.0f} %: the "
+        "machine was too noisy to pin their ratios down\n",
+        capped, report.cameras.size(), 100 * a.options.compare_target);
   if (!a.json.empty()) {
     write_text_file(
         a.json,
@@ -121,8 +133,16 @@ CommandAction add_tune_command(CLI::App& app) {
                 "Search the tuned BVH's parameters only, without native Embree as a choice "
                 "(stored under its own tuning key; native is still measured as a yardstick)");
   cmd->add_option("--baseline-repeats", o.baseline_repeats,
-                  "Interleaved frames of default, native and chosen per camera (medians)")
+                  "Interleaved rounds of default, native and chosen per camera, at least")
       ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--compare-max-rounds", o.compare_max_rounds,
+                  "Rounds at most, when the intervals are still wider than --compare-target")
+      ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
+  cmd->add_option("--compare-target", o.compare_target,
+                  "Half-width of the 95 % intervals of the ratios the rounds go on until")
+      ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
   cmd->add_option("--json", a->json, "Write the per-camera results and the summary as JSON");
   cmd->add_flag("--work-sizes", o.work_sizes,

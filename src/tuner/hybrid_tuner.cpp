@@ -224,28 +224,33 @@ int64_t HybridTuner::config_id(const Config& config) {
   return id;
 }
 
-void HybridTuner::update_best(StateData& state, const Config& config) {
-  const Measurements& changed = state.measurements.at(config);
-  const double cost = changed.median;
-  if (state.best && *state.best == config) {
-    // The best's median moved (possibly up): rescan the state's configurations.
-    state.best.reset();
-    for (const auto& [candidate, m] : state.measurements) {
-      const double c = m.median;
-      if (!state.best || c < state.best_cost ||
-          (c == state.best_cost && m.order < state.best_order)) {
-        state.best = candidate;
-        state.best_cost = c;
-        state.best_order = m.order;
-      }
+// The lowest median alone would favour a configuration measured once on a lucky frame over one
+// measured many times (the winner's curse: in a noisy search, a configuration measured once at
+// 7.4 ms beat one measured 7 times with a median of 8.3 ms, and it is the slower one). So each
+// median is shrunk towards the state's typical cost by one pseudo-measurement,
+// (n median + prior) / (n + 1) with prior = the median of the configurations' medians: a
+// configuration must beat the others by more than the noise of one frame, or be measured again,
+// to become the best. Configurations measured equally often keep the order of their medians.
+void HybridTuner::update_best(StateData& state) {
+  std::vector<double> medians;
+  for (const auto& entry : state.measurements)
+    if (std::isfinite(entry.second.median)) medians.push_back(entry.second.median);
+  const double prior = robust_cost(medians);
+  state.best.reset();
+  state.best_cost = kInfinity;
+  double best_score = kInfinity;
+  for (const auto& [candidate, m] : state.measurements) {
+    if (!std::isfinite(m.median)) continue;  // failed: never the best
+    const double n = static_cast<double>(m.costs.size());
+    const double score = (n * m.median + prior) / (n + 1.0);
+    if (!state.best || score < best_score || (score == best_score && m.order < state.best_order)) {
+      state.best = candidate;
+      state.best_cost = m.median;
+      state.best_order = m.order;
+      best_score = score;
     }
-  } else if (!state.best || cost < state.best_cost ||
-             (cost == state.best_cost && changed.order < state.best_order)) {
-    state.best = config;
-    state.best_cost = cost;
-    state.best_order = changed.order;
   }
-  if (std::isfinite(state.best_cost)) nn_.set_best(state.id, state.normalised, *state.best);
+  if (state.best) nn_.set_best(state.id, state.normalised, *state.best);
 }
 
 void HybridTuner::record(StateData& state, const Config& config, double cost, bool train) {
@@ -256,7 +261,7 @@ void HybridTuner::record(StateData& state, const Config& config, double cost, bo
   m.costs.push_back(cost);
   m.median = robust_cost(m.costs);
   ++state.samples;
-  update_best(state, config);
+  update_best(state);
   if (std::isfinite(cost)) worst_finite_cost_ = std::max(worst_finite_cost_, cost);
   if (train) {
     gq_.train(state.normalised, space_.encode(config),

@@ -153,7 +153,8 @@ class HybridTuner {
   void finish_search(StateData& state);
   // Adds a measurement to the in-memory tables and, if `train`, to θ.
   void record(StateData& state, const Config& config, double cost, bool train);
-  void update_best(StateData& state, const Config& config);
+  // Re-chooses state.best after a measurement (see the definition for how noise is handled).
+  void update_best(StateData& state);
   void add_candidate(const Config& config);
   NelderMead::Lookup lookup_for(const StateData& state) const;
   int64_t config_id(const Config& config);

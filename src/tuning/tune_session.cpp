@@ -11,6 +11,7 @@
 #include "scene/load.h"
 #include "tuner/hybrid_tuner.h"
 #include "tuning/bvh_space.h"
+#include "tuning/interleaved_ratios.h"
 #include "tuning/render_space.h"
 #include "tuning/stats.h"
 #include "tuning/tuner_state.h"
@@ -88,31 +89,54 @@ TuneReport run_tune_session(const TuneOptions& o,
   TuneReport report;
   TuneProgress progress;
   progress.frames_total = o.iterations * static_cast<int>(cameras.size());
-  // Medians of baseline_repeats frames of each candidate, the candidates interleaved and their
-  // order reversed every other repeat, so that a drift of the shared machine's load hits all of
-  // them alike. Reversing also saves rebuilds between two tuned candidates under the render
-  // objective (D N C | C N D | D N C rebuilds the tuned tree 4 times instead of 6).
+  // The yardsticks and the chosen configuration in interleaved rounds (interleaved_ratios.h), so
+  // that a drift of the shared machine's load hits all of them alike. Identical candidates (the
+  // chosen configuration may be the default or native itself) are one configuration measured
+  // once: a configuration compared with itself reports exactly 1, not the machine's noise.
   using Candidate = std::pair<AccelChoice, WorkSizes>;
-  auto measure_interleaved = [&](const std::vector<Candidate>& candidates,
-                                 const CameraDesc& camera) {
-    std::vector<std::vector<double>> ms(candidates.size());
-    for (int k = 0; k < o.baseline_repeats; ++k)
-      for (size_t j = 0; j < candidates.size(); ++j) {
-        size_t i = k % 2 == 0 ? j : candidates.size() - 1 - j;
-        ms[i].push_back(
-            bench.run(candidates[i].first, candidates[i].second, camera).cost_ms(o.objective));
-      }
-    // Identical candidates (the chosen configuration may be the default or native itself) are
-    // one configuration measured more often: they share the median of all their frames, so a
-    // configuration compared with itself reports exactly 1, not the machine's noise.
-    std::vector<double> medians(candidates.size());
-    for (size_t i = 0; i < candidates.size(); ++i) {
-      std::vector<double> pooled;
-      for (size_t j = 0; j < candidates.size(); ++j)
-        if (candidates[j] == candidates[i]) pooled.insert(pooled.end(), ms[j].begin(), ms[j].end());
-      medians[i] = median(pooled);
+  InterleavedOptions compare_options;
+  compare_options.min_rounds = std::max(2, o.baseline_repeats);
+  compare_options.max_rounds = std::max(compare_options.min_rounds, o.compare_max_rounds);
+  compare_options.target_half_width = o.compare_target;
+  compare_options.every_pair = true;
+  // Fills the yardsticks of `r` from candidates {default, native, chosen}.
+  auto compare = [&](const std::vector<Candidate>& candidates, const CameraDesc& camera,
+                     CameraTuneResult& r) {
+    std::vector<Candidate> unique;
+    std::vector<int> slot;
+    for (const Candidate& c : candidates) {
+      auto it = std::find(unique.begin(), unique.end(), c);
+      slot.push_back(static_cast<int>(it - unique.begin()));
+      if (it == unique.end()) unique.push_back(c);
     }
-    return medians;
+    InterleavedResult result = measure_interleaved(
+        static_cast<int>(unique.size()), 0,
+        [&](int i) {
+          FrameCost cost = bench.run(unique[i].first, unique[i].second, camera);
+          if (!cost.ok)
+            throw std::runtime_error("tune: the configuration " + unique[i].first.to_string() +
+                                     " was refused while re-measured: " + cost.error);
+          return cost.cost_ms(o.objective);
+        },
+        compare_options);
+    auto mean_ms = [&](int candidate) { return geometric_mean(result.costs[slot[candidate]]); };
+    // The interval of candidate a's cost over b's (the ratio itself is mean_ms(a) / mean_ms(b)).
+    auto interval = [&](int a, int b, double& low, double& high) {
+      if (slot[a] == slot[b]) {
+        low = high = 1.0;
+        return;
+      }
+      RatioInterval ri = paired_ratio(result, slot[a], slot[b]);
+      low = ri.low;
+      high = ri.high;
+    };
+    r.default_ms = mean_ms(0);
+    r.native_ms = mean_ms(1);
+    r.chosen_ms = mean_ms(2);
+    interval(0, 2, r.speedup_low, r.speedup_high);
+    interval(1, 2, r.vs_native_low, r.vs_native_high);
+    r.compare_rounds = result.rounds;
+    r.compare_within_target = result.converged;
   };
   for (size_t ci = 0; ci < cameras.size(); ++ci) {
     tuner::State state = to_tuner_state(compute_indicators(scene_indicators, cameras[ci]));
@@ -149,12 +173,8 @@ TuneReport run_tune_session(const TuneOptions& o,
     const AccelChoice chosen = to_accel_choice(best);
     const WorkSizes chosen_work = work_of(best);
     // The baselines are measured outside the tuner: they are yardsticks, not tuning decisions.
-    std::vector<double> ms = measure_interleaved(
-        {{default_choice, default_work}, {native_choice, default_work}, {chosen, chosen_work}},
-        cameras[ci]);
-    r.default_ms = ms[0];
-    r.native_ms = ms[1];
-    r.chosen_ms = ms[2];
+    compare({{default_choice, default_work}, {native_choice, default_work}, {chosen, chosen_work}},
+            cameras[ci], r);
     r.config = chosen.to_string();
     if (o.work_sizes) r.config += "," + chosen_work.to_string();
     r.backend = to_string(chosen.backend);
@@ -162,8 +182,9 @@ TuneReport run_tune_session(const TuneOptions& o,
     if (log)
       log(fmt::format(
           "camera {:>3} {:<8} default {:8.2f} ms  native {:8.2f} ms  chosen {:8.2f} ms  "
-          "speedup {:5.2f}  vs native {:5.2f}  {}",
-          r.camera, r.mode, r.default_ms, r.native_ms, r.chosen_ms, r.speedup(), r.vs_native(),
+          "speedup {:5.2f} [{:.2f}, {:.2f}]  vs native {:5.2f} [{:.2f}, {:.2f}]  {} rounds  {}",
+          r.camera, r.mode, r.default_ms, r.native_ms, r.chosen_ms, r.speedup(), r.speedup_low,
+          r.speedup_high, r.vs_native(), r.vs_native_low, r.vs_native_high, r.compare_rounds,
           r.config));
     report.cameras.push_back(r);
   }

@@ -30,8 +30,12 @@ struct TuneOptions {
   int width = 320, height = 180;
   int max_bounces = 3;
   uint64_t seed = 1;
-  // Interleaved re-measurements of default, native and chosen (identical ones pooled).
+  // After each camera's search, default, native and chosen are measured in interleaved rounds
+  // (tuning/interleaved_ratios.h): at least baseline_repeats (and 2) rounds, then until the 95 %
+  // interval of every ratio between them is within ±compare_target, at most compare_max_rounds.
   int baseline_repeats = 3;
+  int compare_max_rounds = 30;
+  double compare_target = 0.03;
   // The scheduler frames are measured on (with work_sizes: the one the search starts from). The
   // renderer's default, since the speed that matters is the one users get.
   bool wavefront = QualityOptions{}.wavefront;
@@ -46,13 +50,19 @@ struct CameraTuneResult {
   int camera = 0;
   std::string mode;  // "search" or "exploit"
   int frames = 0;
-  // Medians of baseline_repeats, the three measured in the same interleaved repeats.
-  double default_ms = 0;      // the default configuration (Embree's recommended, tuned BVH)
-  double chosen_ms = 0;       // the configuration the tuner settled on
-  double native_ms = 0;       // native Embree as `render --accel native` builds it
-  double accumulated_ms = 0;  // sum of the costs of all frames at this camera
-  std::string config;         // chosen configuration (backend and BVH, then work sizes if tuned)
-  std::string backend;        // of the chosen configuration: "tuned" or "native"
+  // Geometric means over the same interleaved rounds, so two of them divide to exactly their
+  // paired ratio (a configuration that is two of these is measured once and given to both).
+  double default_ms = 0;  // the default configuration (Embree's recommended, tuned BVH)
+  double chosen_ms = 0;   // the configuration the tuner settled on
+  double native_ms = 0;   // native Embree as `render --accel native` builds it
+  // 95 % intervals of speedup() and vs_native() (exactly 1 for a configuration and itself).
+  double speedup_low = 0, speedup_high = 0;
+  double vs_native_low = 0, vs_native_high = 0;
+  int compare_rounds = 0;
+  bool compare_within_target = false;  // every interval within ±compare_target before the cap
+  double accumulated_ms = 0;           // sum of the costs of all frames at this camera
+  std::string config;   // chosen configuration (backend and BVH, then work sizes if tuned)
+  std::string backend;  // of the chosen configuration: "tuned" or "native"
   bool converged = false;
   double speedup() const { return chosen_ms > 0 ? default_ms / chosen_ms : 0.0; }
   double vs_native() const { return chosen_ms > 0 ? native_ms / chosen_ms : 0.0; }

@@ -143,6 +143,27 @@ TEST(HybridTuner, FailuresAreRecordedAndNeverBest) {
   for (double theta : tuner.gq().theta()) EXPECT_TRUE(std::isfinite(theta));
 }
 
+// The winner's curse: a configuration measured once on a lucky frame must not become the best
+// over one measured seven times that is faster in truth; measured equally often, the lower
+// median still wins.
+TEST(HybridTuner, OneLuckyFrameDoesNotMakeTheBest) {
+  const Space space = kernel_space();
+  HybridTuner tuner(space, kernel_schema(), fast_options(1.0));
+  const State state{300.0};
+  tuner.suggest(state);
+  auto config = [&](int block) { return space.default_config().set_int("block", block); };
+  const Config lucky = config(1), steady = config(2);
+  tuner.report(lucky, 7.4);
+  for (double ms : {8.1, 8.3, 7.9, 8.4, 8.2, 8.3, 8.0}) tuner.report(steady, ms);
+  for (int block : {4, 8, 16, 32}) tuner.report(config(block), 10.0 + block / 8.0);
+  EXPECT_EQ(tuner.best(state), steady);
+
+  // The lucky configuration measured as often, at the same costs shifted 0.1 lower: it is
+  // faster, and now the best.
+  for (double ms : {8.2, 7.8, 8.3, 8.1, 8.2, 7.9}) tuner.report(lucky, ms - 0.1);
+  EXPECT_EQ(tuner.best(state), lucky);
+}
+
 TEST(HybridTuner, ConditionalParametersAreNotSearchedWhenInactive) {
   const Space space = testing::bvh_space();
   IndicatorSchema schema;

@@ -72,6 +72,18 @@ TEST(TuneNative, EverySearchMeasuresNativeAndTheReportHasIt) {
   EXPECT_GT(c.chosen_ms, 0.0);
   EXPECT_DOUBLE_EQ(c.vs_native(), c.native_ms / c.chosen_ms);
   EXPECT_DOUBLE_EQ(c.speedup(), c.default_ms / c.chosen_ms);
+  // Interleaved rounds from baseline_repeats to the cap, each ratio inside its interval.
+  EXPECT_GE(c.compare_rounds, o.baseline_repeats);
+  EXPECT_LE(c.compare_rounds, o.compare_max_rounds);
+  EXPECT_TRUE(c.compare_within_target || c.compare_rounds == o.compare_max_rounds);
+  EXPECT_LE(c.speedup_low, c.speedup());
+  EXPECT_GE(c.speedup_high, c.speedup());
+  EXPECT_LE(c.vs_native_low, c.vs_native());
+  EXPECT_GE(c.vs_native_high, c.vs_native());
+  if (c.compare_within_target) {
+    EXPECT_LE(c.vs_native_high / c.vs_native() - 1, o.compare_target + 1e-12);
+    EXPECT_LE(c.speedup_high / c.speedup() - 1, o.compare_target + 1e-12);
+  }
   EXPECT_TRUE(c.backend == "tuned" || c.backend == "native") << c.backend;
   EXPECT_EQ(c.config.rfind("backend=" + c.backend, 0), 0u) << c.config;
 
@@ -98,6 +110,8 @@ TEST(TuneNative, AConfigurationComparedWithItselfReportsExactlyOne) {
   const CameraTuneResult& c = report.cameras[0];
   ASSERT_EQ(c.config, AccelChoice::tuned(BvhConfig{}).to_string());
   EXPECT_EQ(c.speedup(), 1.0);
+  EXPECT_EQ(c.speedup_low, 1.0);
+  EXPECT_EQ(c.speedup_high, 1.0);
   EXPECT_EQ(c.default_ms, c.chosen_ms);
   EXPECT_NE(c.native_ms, c.chosen_ms);  // native is another configuration, measured apart
 }

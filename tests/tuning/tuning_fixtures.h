@@ -32,6 +32,7 @@ inline TuneOptions tiny_tune_session(const std::string& db_path) {
   o.cameras = 1;
   o.width = 16;
   o.height = 12;
+  o.compare_max_rounds = 6;  // 16x12 frames are noisy: keep the comparison's rounds few
   o.progress = false;
   return o;
 }
