@@ -1,6 +1,7 @@
 #include "accel/tuned_bvh.h"
 
 #include <chrono>
+#include <utility>
 
 #include "accel/bvh_walk.h"
 
@@ -58,6 +59,18 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
         " triangles");
   stats.notes = notes;
   return stats;
+}
+
+void TunedBvhAccel::swap_tree(TunedBvhAccel& other) noexcept {
+  using std::swap;
+  // The traversal context points into the tree's own allocation and at the geometry, never
+  // into this object, so it stays valid across the exchange.
+  swap(config_, other.config_);
+  swap(config_note_, other.config_note_);
+  swap(tree_, other.tree_);
+  swap(context_, other.context_);
+  swap(kernels_, other.kernels_);
+  swap(tree_stats_, other.tree_stats_);
 }
 
 bool TunedBvhAccel::intersect(const Ray& ray, Hit& hit) const {

@@ -33,6 +33,12 @@ class TunedBvhAccel final : public Accel {
   // statistics walk afterwards is not timed.
   BuildStats build(const GeometryView& geometry) override;
 
+  // Exchanges the built trees (each with the configuration it was built with) of this and
+  // `other`; each keeps its device and primitive cache. Lets a caller keep the trees of several
+  // configurations and switch between them without rebuilding, while a renderer goes on holding
+  // this accelerator by reference. Neither tree moves in memory.
+  void swap_tree(TunedBvhAccel& other) noexcept;
+
   // Shape of the current tree (leaf sizes, references) beyond BuildStats.
   const bvh::TreeStats& tree_stats() const { return tree_stats_; }
   bool relaid_out() const { return tree_ && tree_->relaid_out(); }

@@ -37,19 +37,21 @@ size_t EvalComparison::index_of(const std::string& config) const {
 }
 
 double EvalComparison::cost_ms(const std::string& config) const {
-  return geometric_mean(costs[index_of(config)]);
+  // The yardstick's own ratio is exactly 1, so its cost is its plain median.
+  return median(costs.at(0)) * ratio(config, configs.at(0)).ratio;
 }
 
 RatioInterval EvalComparison::ratio(const std::string& a, const std::string& b) const {
   InterleavedResult rounds;
   rounds.costs = costs;
-  return paired_ratio(rounds, static_cast<int>(index_of(a)), static_cast<int>(index_of(b)));
+  return paired_ratio(rounds, static_cast<int>(index_of(a)), static_cast<int>(index_of(b)),
+                      RatioEstimator::kMedian);
 }
 
 const std::string& EvalComparison::fastest() const {
   size_t best = 0;
   for (size_t i = 1; i < configs.size(); ++i)
-    if (geometric_mean(costs[i]) < geometric_mean(costs[best])) best = i;
+    if (cost_ms(configs[i]) < cost_ms(configs[best])) best = i;
   return configs.at(best);
 }
 
@@ -74,6 +76,7 @@ InterleavedOptions comparison_options(const EvalProfile& p) {
   o.max_rounds = p.compare_max_rounds;
   o.target_half_width = p.compare_target;
   o.every_pair = true;
+  o.estimator = RatioEstimator::kMedian;
   return o;
 }
 
@@ -98,9 +101,11 @@ EvalComparison measure_comparison(const std::vector<std::string>& configs, Objec
     return cost.cost_ms(objective);
   };
   for (size_t i = 0; i < configs.size(); ++i) frame_ms(i);
+  InterleavedOptions median_options = options;
+  median_options.estimator = RatioEstimator::kMedian;  // what EvalComparison derives
   const InterleavedResult measured = measure_interleaved(
       static_cast<int>(configs.size()), 0, [&](int i) { return frame_ms(static_cast<size_t>(i)); },
-      options);
+      median_options);
   EvalComparison c;
   c.configs = configs;
   c.costs = measured.costs;

@@ -4,8 +4,12 @@
 // the ratio between any two of them is known within ±3 % (95 % confidence) or a cap of rounds.
 // A load change or a clock drift then hits every candidate alike instead of whichever happened
 // to be measured at the time, and the best known configuration is the fastest candidate
-// re-measured here, never one lucky search sample. The rounds are kept whole, so a study that
-// reads a comparison back derives exactly what the run that measured it did.
+// re-measured here, never one lucky search sample. Ratios are medians of the per-round ratios
+// with order-statistic intervals (median_interval.h), so a frame stopped or slowed by a load
+// spike moves neither, and the costs are derived from the same medians. The rounds are kept
+// whole, so a study that reads a comparison back derives exactly what the run that measured it
+// did, whichever estimator stopped it: comparisons stored when ratios were geometric means are
+// read and derived like new ones.
 #pragma once
 
 #include <functional>
@@ -24,13 +28,17 @@ struct EvalComparison {
   bool within_target = false;  // every pair's interval reached the target before the cap
 
   int rounds() const { return costs.empty() ? 0 : static_cast<int>(costs.front().size()); }
-  // The geometric mean of the configuration's costs over the rounds. Two of them divide to
-  // exactly their paired ratio, so the report's costs and ratios agree.
+  // The first configuration's (the default's, in comparison_configs) median cost over the
+  // rounds, times the configuration's median per-round ratio to it: every cost in the units of
+  // one yardstick measured in every round. A cost divided by the first configuration's is
+  // exactly their paired ratio; between two others, medians not being transitive, the ratio of
+  // their costs can differ from their paired ratio by the noise of the rounds, and the report's
+  // ratios always come from ratio().
   double cost_ms(const std::string& config) const;
-  // a / b, the geometric mean of the per-round ratios, with its 95 % confidence interval.
+  // a / b: the median of the per-round ratios, with its order-statistic 95 % confidence
+  // interval (under 6 rounds, stored by the earlier protocol, the range of the ratios).
   RatioInterval ratio(const std::string& a, const std::string& b) const;
-  // The configuration of the lowest geometric mean (the first of equals): every other one's
-  // ratio to it is >= 1.
+  // The configuration of the lowest cost (the first of equals).
   const std::string& fastest() const;
 
  private:
@@ -44,12 +52,13 @@ std::vector<std::string> comparison_configs(const std::string& converged,
                                             const std::string& best_sample,
                                             const std::vector<std::string>& predicted);
 
-// Rounds and target of the profile, over every pair.
+// Rounds and target of the profile, over every pair, with the median estimator.
 InterleavedOptions comparison_options(const EvalProfile& p);
 
 // Measures `configs` at camera `camera`: one untimed frame of each first (a tree built for the
-// first time pays for page faults and cold caches), then interleaved rounds. Throws
-// std::runtime_error when a configuration's build is refused.
+// first time pays for page faults and cold caches), then interleaved rounds, which stop when the
+// comparison's own estimator, the median, has every pair within the target (whatever estimator
+// `options` names). Throws std::runtime_error when a configuration's build is refused.
 EvalComparison measure_comparison(EvalCostSource& costs, Objective objective, int camera,
                                   const std::vector<std::string>& configs,
                                   const InterleavedOptions& options);

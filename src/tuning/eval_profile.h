@@ -22,8 +22,8 @@ struct EvalProfile {
   double train_fraction = 0.8;
   // Each camera's comparison (eval_comparison.h): interleaved rounds from the minimum until the
   // 95 % interval of the ratio between any two configurations is within ±compare_target, or
-  // the cap.
-  int compare_min_rounds = 3;
+  // the cap. 6 rounds are the fewest whose median has a 95 % order-statistic interval.
+  int compare_min_rounds = 6;
   int compare_max_rounds = 30;
   double compare_target = 0.03;
   std::vector<Objective> objectives = {Objective::kRender, Objective::kTotal};

@@ -18,9 +18,18 @@ struct CameraRecord {
   std::string objective;
   int camera = 0;
   std::vector<double> search_ms;  // cost of every search frame, in order
-  std::string converged_config;   // the search's incumbent
+  // The yardstick measured in both windows: the default configuration, which the search measures
+  // in its first frame and the comparison in every round. search_window_load = the search's
+  // frame(s) of it / the comparison's cost of it: above 1, the machine was slower while the
+  // search ran than during the comparison, and every search frame with it. Not used to calibrate
+  // anything (one frame is no yardstick for 80; docs/results.md); 0 when the search has no
+  // frame of the default.
+  double search_default_ms = 0;
+  double search_window_load = 0;
+  std::string converged_config;  // the search's incumbent
   bool converged = false;
-  // Geometric means over the comparison's rounds (their ratios are the paired ratios below).
+  // From the comparison (EvalComparison::cost_ms): the default's median cost times the median
+  // per-round ratio to it (over the default, their ratios are the paired ratios below).
   double default_ms = 0;
   double converged_ms = 0;
   double native_ms = 0;  // native Embree, medium quality (`render --accel native`)
@@ -41,7 +50,7 @@ struct PredictionRecord {
   int camera = 0;
   std::string predictor;  // "nn" or "rbf"
   std::string config;
-  double predicted_ms = 0;       // geometric mean over the camera's comparison
+  double predicted_ms = 0;       // EvalComparison::cost_ms of the camera's comparison
   double search_total_ms = 0;    // accumulated time of the search's frames
   double speedup = 0;            // over the search, accumulated over the search's frame count
   RatioInterval native_speedup;  // native Embree / predicted

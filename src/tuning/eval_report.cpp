@@ -73,17 +73,19 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
   cams << "scene,objective,camera,default_ms,converged_ms,best_ms,search_speedup,converged,"
           "search_frames,search_total_ms,converged_config,best_config,native_ms,"
           "native_speedup,search_speedup_low,search_speedup_high,native_speedup_low,"
-          "native_speedup_high,candidates,rounds,ci_within_target\n";
+          "native_speedup_high,candidates,rounds,ci_within_target,search_default_ms,"
+          "search_window_load\n";
   for (const CameraRecord& c : r.cameras) {
     double total = 0;
     for (double ms : c.search_ms) total += ms;
     cams << fmt::format(
-        "{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\",{},{},{},{},{},{},{},{},{}\n", c.scene,
+        "{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{}\n", c.scene,
         c.objective, c.camera, num(c.default_ms), num(c.converged_ms), num(c.best_ms),
         num(c.search_speedup.ratio), c.converged ? 1 : 0, c.search_ms.size(), num(total),
         c.converged_config, c.best_config, num(c.native_ms), num(c.native_speedup.ratio),
         num(c.search_speedup.low), num(c.search_speedup.high), num(c.native_speedup.low),
-        num(c.native_speedup.high), c.candidates, c.rounds, c.within_target ? 1 : 0);
+        num(c.native_speedup.high), c.candidates, c.rounds, c.within_target ? 1 : 0,
+        num(c.search_default_ms), num(c.search_window_load));
   }
   cams.commit();
   auto frames = open_out(dir / "search_frames.csv");
@@ -306,10 +308,11 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
             "converged configuration and best sample, every prediction) is re-measured in one "
             "comparison: an untimed frame of each, then rounds of one frame each in rotating "
             "order, from {} rounds until the 95 % confidence interval of the ratio between any "
-            "two of them is within ±{:g} %, at most {} rounds. Costs are geometric means over "
-            "the rounds, ratios the geometric means of the per-round ratios, shown with their "
-            "95 % interval in brackets (over cameras: the median, or for the roofline the mean, "
-            "of the single comparisons' bounds).\n\n",
+            "two of them is within ±{:g} %, at most {} rounds. Ratios are the medians of the "
+            "per-round ratios, shown with their distribution-free 95 % interval (order "
+            "statistics of binomial ranks) in brackets (over cameras: the median, or for the "
+            "roofline the mean, of the single comparisons' bounds); costs are the default "
+            "configuration's median cost times the median per-round ratio to it.\n\n",
             p.cameras, p.iterations, p.spp, p.width, p.height, p.max_bounces,
             p.wavefront ? "wavefront" : "tile",
             p.native_in_space ? "the backend (tuned BVH or native Embree) and the BVH parameters"

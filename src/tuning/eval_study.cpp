@@ -32,28 +32,35 @@ namespace fs = std::filesystem;
 struct SearchOutcome {
   CameraSearch search;      // what the predictors learn from
   std::string best_sample;  // AccelChoice text of the lowest sample: a candidate, never a cost
+  double default_ms = 0;    // the search's median frame of the default configuration; 0 if none
 };
 
-// A refused build counts as a frame rendered with the default tree, at the cost the search
-// itself measured for the default configuration (every search starts there), so the searches
-// need nothing measured outside them. Should that be missing, the search's worst frame stands
-// in for it.
+// The median of the search's frames of the default configuration (every search starts there,
+// usually its only one); 0 when it has none.
 double default_cost_in_search(const std::vector<tuner::StoredSample>& samples,
                               const std::string& default_config) {
   std::vector<double> at_default;
+  for (const tuner::StoredSample& s : samples)
+    if (std::isfinite(s.cost) && s.config == default_config) at_default.push_back(s.cost * 1000.0);
+  return median(at_default);
+}
+
+// A refused build counts as a frame rendered with the default tree, at the cost the search
+// itself measured for the default configuration, so the searches need nothing measured outside
+// them. Should that be missing, the search's worst frame stands in for it.
+double refused_frame_cost(const std::vector<tuner::StoredSample>& samples, double default_ms) {
+  if (default_ms > 0) return default_ms;
   double worst = 0;
-  for (const tuner::StoredSample& s : samples) {
-    if (!std::isfinite(s.cost)) continue;
-    if (s.config == default_config) at_default.push_back(s.cost * 1000.0);
-    worst = std::max(worst, s.cost * 1000.0);
-  }
-  return at_default.empty() ? worst : median(at_default);
+  for (const tuner::StoredSample& s : samples)
+    if (std::isfinite(s.cost)) worst = std::max(worst, s.cost * 1000.0);
+  return worst;
 }
 
 SearchOutcome search_outcome(const std::vector<tuner::StoredSample>& samples,
                              const tuner::Space& space, tuner::Config incumbent) {
   SearchOutcome o;
-  const double refused_ms = default_cost_in_search(samples, space.default_config().to_string());
+  o.default_ms = default_cost_in_search(samples, space.default_config().to_string());
+  const double refused_ms = refused_frame_cost(samples, o.default_ms);
   double best_ms = kNever;
   o.best_sample = to_accel_choice(space.default_config()).to_string();
   for (const tuner::StoredSample& s : samples) {
@@ -73,6 +80,7 @@ void add_comparison(CameraRecord& r, const EvalComparison& c) {
   const std::string default_config = AccelChoice::tuned(BvhConfig{}).to_string();
   const std::string native_config = AccelChoice::native().to_string();
   r.default_ms = c.cost_ms(default_config);
+  if (r.search_default_ms > 0) r.search_window_load = r.search_default_ms / r.default_ms;
   r.native_ms = c.cost_ms(native_config);
   r.converged_ms = c.cost_ms(r.converged_config);
   r.best_config = c.fastest();
@@ -278,6 +286,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         r.camera = camera;
         for (const auto& [config, ms] : search.search.samples) r.search_ms.push_back(ms);
         r.search_ms.resize(std::min(r.search_ms.size(), static_cast<size_t>(p.iterations)));
+        r.search_default_ms = search.default_ms;
         if (auto summary = tuner.summary(scene->states[ci])) r.converged = summary->converged;
         r.converged_config = to_accel_choice(incumbent).to_string();
         if (log)

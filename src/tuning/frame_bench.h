@@ -1,9 +1,12 @@
 // Measures what the tuner optimises: one frame rendered with a given accelerator (our tuned BVH
 // with a configuration, or native Embree with a build quality; optionally with other scheduler
 // and work sizes) from a given camera. A backend's tree is rebuilt only when its configuration
-// changes (progressive rendering) or for every frame (real-time rendering, objective `total`);
-// a change of work sizes alone never rebuilds it. Both backends keep their last tree, so frames
-// that alternate between native and tuned (the baselines of `tune`) do not rebuild either.
+// has no tree yet (progressive rendering) or for every frame (real-time rendering, objective
+// `total`); a change of work sizes alone never rebuilds it. Both backends keep their last tree,
+// so frames that alternate between native and tuned (the baselines of `tune`) do not rebuild
+// either, and under objective `render` the tuned backend keeps the trees of its last few
+// configurations too (TunedTreeCache), so that a comparison's rounds, one frame of each
+// candidate in turn, render from the trees built once instead of rebuilding one per frame.
 #pragma once
 
 #include <optional>
@@ -18,6 +21,7 @@
 #include "render/tile_renderer.h"
 #include "scene/scene.h"
 #include "tuning/accel_choice.h"
+#include "tuning/tree_cache.h"
 #include "tuning/work_sizes.h"
 
 namespace tuneray {
@@ -47,6 +51,16 @@ struct FrameCost {
 
 class FrameBench {
  public:
+  // Tuned trees kept under objective `render`, the one rendered with included. Enough for every
+  // tuned candidate of a comparison (default, converged, best sample and the distinct
+  // predictions: at most 7 in the standard study, 9 seen in the paper's, whose cameras are held
+  // out 3 times on average); with more candidates than trees, least-recently-used eviction
+  // under round-robin frames would rebuild at every frame. Bounded because a search tries a new
+  // configuration nearly every frame, and trees are large: the default tree of bmw-m6 (0.8 M
+  // triangles) takes 81 MiB, so 16 trees of the largest shared scene take 1-2 GiB (per
+  // process: MPI ranks on one node each keep their own).
+  static constexpr size_t kTunedTrees = 16;
+
   FrameBench(const Scene& scene, const RenderSettings& settings, uint32_t spp, Objective objective);
 
   // Renders one frame of `spp` samples per pixel with `choice` from `camera`, with the work
@@ -83,9 +97,10 @@ class FrameBench {
   Objective objective_;
   TunedBvhAccel tuned_;
   EmbreeNativeAccel native_;
-  std::optional<BvhConfig> tuned_built_;
+  std::optional<std::string> tuned_built_;  // AccelChoice text of the tree in tuned_
   std::optional<BvhQuality> native_built_;
   BuildStats tuned_stats_, native_stats_;
+  TunedTreeCache kept_{kTunedTrees - 1};  // tuned_'s tree is the other one
   Backend current_ = Backend::kTuned;
   PcgSampler sampler_;
   // One renderer per backend: a renderer holds its accelerator by reference.

@@ -1,9 +1,12 @@
 #include "tuning/interleaved_ratios.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "tuning/median_interval.h"
 #include "tuning/stats.h"
 
 namespace tuneray {
@@ -40,7 +43,14 @@ void mean_interval(const std::vector<double>& x, double& mean, double& half_widt
 
 }  // namespace
 
-RatioInterval paired_ratio(const InterleavedResult& result, int i, int j) {
+double RatioInterval::relative_half_width() const {
+  if (!(ratio > 0)) return 0;
+  return std::max(high / ratio, low > 0 ? ratio / low : std::numeric_limits<double>::infinity()) -
+         1;
+}
+
+RatioInterval paired_ratio(const InterleavedResult& result, int i, int j,
+                           RatioEstimator estimator) {
   const int count = static_cast<int>(result.costs.size());
   if (i < 0 || j < 0 || i >= count || j >= count)
     throw std::invalid_argument("paired_ratio: no candidate " + std::to_string(std::max(i, j)));
@@ -50,12 +60,22 @@ RatioInterval paired_ratio(const InterleavedResult& result, int i, int j) {
     throw std::invalid_argument("paired_ratio: the candidates' rounds differ");
   std::vector<double> logs;
   for (size_t k = 0; k < a.size(); ++k) logs.push_back(std::log(a[k] / b[k]));
-  double mean = 0, half = 0;
-  mean_interval(logs, mean, half);
   RatioInterval r;
-  r.ratio = std::exp(mean);
-  r.low = std::exp(mean - half);
-  r.high = std::exp(mean + half);
+  if (estimator == RatioEstimator::kMedian) {
+    // On the logarithms, so that an even count's median (the mean of the two middle logs, the
+    // geometric mean of the two middle ratios) inverts exactly with the pair.
+    const MedianInterval m = median_interval(logs);
+    r.ratio = std::exp(m.median);
+    r.low = std::exp(m.low);
+    r.high = std::exp(m.high);
+    r.confidence = m.confidence;
+  } else {
+    double mean = 0, half = 0;
+    mean_interval(logs, mean, half);
+    r.ratio = std::exp(mean);
+    r.low = std::exp(mean - half);
+    r.high = std::exp(mean + half);
+  }
   r.median_cost = median(a);
   return r;
 }
@@ -84,15 +104,18 @@ InterleavedResult measure_interleaved(int count, int reference,
     }
     result.rounds = round + 1;
     if (result.rounds < options.min_rounds) continue;
+    auto within = [&](const RatioInterval& r) {
+      return r.confidence >= 0.95 && r.relative_half_width() <= options.target_half_width;
+    };
     bool all_within = true;
     for (int i = 0; i < count; ++i) {
-      result.ratios[i] = paired_ratio(result, i, reference);
-      all_within &= result.ratios[i].relative_half_width() <= options.target_half_width;
+      result.ratios[i] = paired_ratio(result, i, reference, options.estimator);
+      all_within &= within(result.ratios[i]);
     }
-    // A pair's interval is symmetric on a log scale, so i over j covers j over i.
+    // A pair's interval inverts exactly with the pair, so i over j covers j over i.
     for (int i = 0; i < count && options.every_pair; ++i)
       for (int j = i + 1; j < count; ++j)
-        all_within &= paired_ratio(result, i, j).relative_half_width() <= options.target_half_width;
+        all_within &= within(paired_ratio(result, i, j, options.estimator));
     if (all_within) {
       result.converged = true;
       break;

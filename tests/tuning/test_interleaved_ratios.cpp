@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace tuneray {
 namespace {
@@ -131,6 +132,85 @@ TEST(MeasureInterleaved, EveryPairWaitsForTheRatiosBetweenCandidatesToo) {
   EXPECT_LE(paired_ratio(pairs, 1, 2).relative_half_width(), 0.03);
   EXPECT_LE(paired_ratio(pairs, 2, 1).relative_half_width(), 0.03);
   EXPECT_FALSE(wobbling(true, 3).converged);
+}
+
+InterleavedResult fixed_rounds(const std::vector<std::vector<double>>& costs) {
+  InterleavedResult r;
+  r.costs = costs;
+  r.rounds = static_cast<int>(costs.front().size());
+  return r;
+}
+
+// One frame of candidate 0 stopped for a while (SIGSTOP, a load spike): 30 times its cost in one
+// round of 30. The geometric mean moves by 30^(1/30) = 12 %; the median does not move at all.
+TEST(PairedRatio, OneStoppedFrameMovesTheGeometricMeanNotTheMedian) {
+  std::vector<std::vector<double>> costs(2);
+  for (int round = 0; round < 30; ++round) {
+    const double load = 1 + 0.01 * (round % 7);  // a common load, as in interleaved rounds
+    costs[0].push_back((round == 17 ? 30 : 1) * 6.0 * load);
+    costs[1].push_back(3.0 * load);
+  }
+  const InterleavedResult r = fixed_rounds(costs);
+  const RatioInterval geometric = paired_ratio(r, 0, 1);
+  EXPECT_NEAR(geometric.ratio, 2.0 * std::pow(30.0, 1.0 / 30), 1e-12);
+  const RatioInterval median = paired_ratio(r, 0, 1, RatioEstimator::kMedian);
+  EXPECT_NEAR(median.ratio, 2.0, 1e-15);
+  EXPECT_NEAR(median.low, 2.0, 1e-15);  // ranks 10 and 21 of 30: the stopped round is the 30th
+  EXPECT_NEAR(median.high, 2.0, 1e-15);
+  EXPECT_NEAR(median.confidence, 1 - 2 * 22964087.0 / 1073741824.0, 1e-12);
+  EXPECT_NEAR(median.relative_half_width(), 0.0, 1e-15);
+}
+
+TEST(PairedRatio, TheMedianIsTheMiddleRatioAndItsIntervalTheRankedRatios) {
+  // Ratios 1.1, 0.9, 1.3, 1.0, 1.2, 0.8, 1.4, 1.05, 0.95, 1.15 (round by round): sorted
+  // 0.8 0.9 0.95 1.0 1.05 1.1 1.15 1.2 1.3 1.4, median sqrt(1.05 * 1.1) (the geometric mean of
+  // the two middle ratios, so that the pair inverts exactly), interval ranks 2 and 9.
+  const std::vector<double> ratios = {1.1, 0.9, 1.3, 1.0, 1.2, 0.8, 1.4, 1.05, 0.95, 1.15};
+  std::vector<std::vector<double>> costs(2);
+  for (size_t k = 0; k < ratios.size(); ++k) {
+    costs[1].push_back(2.0 + static_cast<double>(k));
+    costs[0].push_back(ratios[k] * costs[1].back());
+  }
+  const InterleavedResult r = fixed_rounds(costs);
+  const RatioInterval m = paired_ratio(r, 0, 1, RatioEstimator::kMedian);
+  EXPECT_NEAR(m.ratio, std::sqrt(1.05 * 1.1), 1e-12);
+  EXPECT_NEAR(m.low, 0.9, 1e-12);
+  EXPECT_NEAR(m.high, 1.3, 1e-12);
+  EXPECT_NEAR(m.relative_half_width(), 1.3 / std::sqrt(1.05 * 1.1) - 1, 1e-12);  // the wider side
+  const RatioInterval inverse = paired_ratio(r, 1, 0, RatioEstimator::kMedian);
+  EXPECT_NEAR(inverse.ratio, 1 / m.ratio, 1e-12);
+  EXPECT_NEAR(inverse.low, 1 / m.high, 1e-12);
+  EXPECT_NEAR(inverse.high, 1 / m.low, 1e-12);
+}
+
+TEST(MeasureInterleaved, TheMedianStopsOnlyWithA95PercentIntervalWithinTheTarget) {
+  InterleavedOptions o;
+  o.estimator = RatioEstimator::kMedian;
+  // Constant costs: exact from the first round, but no median has a 95 % interval under 6.
+  const double base[3] = {10, 20, 5};
+  const InterleavedResult flat = measure_interleaved(
+      3, 0, [&](int i) { return base[i]; }, o);
+  EXPECT_TRUE(flat.converged);
+  EXPECT_EQ(flat.rounds, 6);
+  EXPECT_DOUBLE_EQ(flat.ratios[1].ratio, 2.0);
+  EXPECT_GE(flat.ratios[1].confidence, 0.95);
+
+  // Candidate 1 stopped 30 times too long in round 2: the range of 6, 7 or 8 rounds holds it,
+  // ranks 2 and 8 of 9 leave it out, and the ratio is exact.
+  o.every_pair = true;
+  int calls = 0;
+  const InterleavedResult stopped = measure_interleaved(
+      2, 0,
+      [&](int i) {
+        const int round = calls++ / 2;
+        return i == 0 ? 4.0 : (round == 2 ? 30.0 : 1.0) * 2.0;
+      },
+      o);
+  EXPECT_TRUE(stopped.converged);
+  EXPECT_EQ(stopped.rounds, 9);
+  EXPECT_DOUBLE_EQ(stopped.ratios[1].ratio, 0.5);
+  EXPECT_DOUBLE_EQ(stopped.ratios[1].low, 0.5);
+  EXPECT_DOUBLE_EQ(stopped.ratios[1].high, 0.5);
 }
 
 TEST(MeasureInterleaved, RefusesBadArgumentsAndBadCosts) {
