@@ -44,6 +44,9 @@ RenderVsNative render_vs_native(const Scene& scene, const CameraDesc& camera,
   interleaving.min_rounds = o.repeats;
   interleaving.max_rounds = o.max_repeats;
   interleaving.target_half_width = o.target_half_width;
+  // eval's and tune's estimator: one frame slowed by the machine moves neither the speedup nor
+  // its interval (tuning/median_interval.h).
+  interleaving.estimator = RatioEstimator::kMedian;
   constexpr int kNative = 0, kChosen = 1;
   const InterleavedResult paired = measure_interleaved(
       2, kChosen,
