@@ -19,7 +19,8 @@ json frames_json(const std::vector<EvalFrame>& frames) {
                  {"ok", f.ok},
                  {"cost_s", f.cost_s},
                  {"build_ms", f.build_ms},
-                 {"render_ms", f.render_ms}});
+                 {"render_ms", f.render_ms},
+                 {"yardstick_ms", f.yardstick_ms}});
   return a;
 }
 
@@ -28,7 +29,7 @@ std::vector<EvalFrame> parse_frames(const json& a) {
   for (const json& f : a.at("frames"))
     frames.push_back({f.at("config").get<std::string>(), f.at("ok").get<bool>(),
                       f.at("cost_s").get<double>(), f.at("build_ms").get<double>(),
-                      f.at("render_ms").get<double>()});
+                      f.at("render_ms").get<double>(), f.at("yardstick_ms").get<double>()});
   return frames;
 }
 
@@ -114,7 +115,8 @@ EvalJobResult run_eval_job(const EvalProfile& p, const EvalScene& scene, EvalCos
         r.frames.push_back(frame);
       }
     while (r.frames.size() < static_cast<size_t>(p.iterations))
-      r.frames.push_back(measure_search_frame(tuner, state, costs, objective, job.camera));
+      r.frames.push_back(measure_search_frame(p, static_cast<int>(r.frames.size()), tuner, state,
+                                              costs, objective, job.camera));
   }
   if (!job.compare.empty())
     r.comparison =

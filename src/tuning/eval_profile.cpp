@@ -14,10 +14,12 @@ EvalProfile eval_profile(const std::string& name, const std::vector<std::string>
     p.width = 96;
     p.height = 54;
     p.repetitions = 3;
+    p.yardsticks = 3;
   } else if (name == "standard") {
     p.scenes = shared_scenes;
     p.cameras = 10;
     p.iterations = 30;
+    p.yardsticks = 6;
     p.width = 256;
     p.height = 144;
     p.repetitions = 15;

@@ -26,6 +26,10 @@ struct EvalProfile {
   int compare_min_rounds = 6;
   int compare_max_rounds = 30;
   double compare_target = 0.03;
+  // Frames of the default configuration measured during each search, evenly spread and not
+  // reported to the tuner: the yardstick that calibrates the search's frames to the load of
+  // its comparison's window (eval_records.h, CameraRecord::search_window_load).
+  int yardsticks = 10;
   std::vector<Objective> objectives = {Objective::kRender, Objective::kTotal};
   uint64_t seed = 1;
   bool wavefront = QualityOptions{}.wavefront;  // the scheduler frames are measured on

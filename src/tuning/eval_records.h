@@ -12,20 +12,34 @@
 
 namespace tuneray {
 
+inline constexpr int kMinYardstickFrames = 3;
+
 // One camera's search and its comparison.
 struct CameraRecord {
   std::string scene;
   std::string objective;
   int camera = 0;
-  std::vector<double> search_ms;  // cost of every search frame, in order
+  std::vector<double> search_ms;  // cost of every search frame, in order, as measured
   // The yardstick measured in both windows: the default configuration, which the search measures
-  // in its first frame and the comparison in every round. search_window_load = the search's
-  // frame(s) of it / the comparison's cost of it: above 1, the machine was slower while the
-  // search ran than during the comparison, and every search frame with it. Not used to calibrate
-  // anything (one frame is no yardstick for 80; docs/results.md); 0 when the search has no
-  // frame of the default.
+  // in its first frame and every so often between its frames (EvalProfile::yardsticks) and the
+  // comparison in every round. search_default_ms = the median of the search window's frames of
+  // it (search_default_frames of them), search_window_load = that / the comparison's cost of it:
+  // above 1, the machine was slower while the search ran than during the comparison, and every
+  // search frame with it. With at least kMinYardstickFrames of them (search_calibrated) the
+  // figures that set the search's frames against the comparison's costs (speedup over search,
+  // overhead reduction, break-even) divide the search's frames by the load; a median of so few
+  // frames is what one stopped frame cannot move. 0 when the search has no frame of the default.
   double search_default_ms = 0;
+  int search_default_frames = 0;
   double search_window_load = 0;
+  bool search_calibrated = false;
+  // search_ms as if measured in the comparison's window (unchanged when not calibrated).
+  std::vector<double> search_ms_in_comparison_window() const {
+    std::vector<double> scaled = search_ms;
+    if (search_calibrated)
+      for (double& ms : scaled) ms /= search_window_load;
+    return scaled;
+  }
   std::string converged_config;  // the search's incumbent
   bool converged = false;
   // From the comparison (EvalComparison::cost_ms): the default's median cost times the median

@@ -74,18 +74,19 @@ void write_csvs(const EvalResults& r, const fs::path& dir) {
           "search_frames,search_total_ms,converged_config,best_config,native_ms,"
           "native_speedup,search_speedup_low,search_speedup_high,native_speedup_low,"
           "native_speedup_high,candidates,rounds,ci_within_target,search_default_ms,"
-          "search_window_load\n";
+          "search_window_load,search_default_frames,search_calibrated\n";
   for (const CameraRecord& c : r.cameras) {
     double total = 0;
     for (double ms : c.search_ms) total += ms;
     cams << fmt::format(
-        "{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{}\n", c.scene,
-        c.objective, c.camera, num(c.default_ms), num(c.converged_ms), num(c.best_ms),
+        "{},{},{},{},{},{},{},{},{},{},\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        c.scene, c.objective, c.camera, num(c.default_ms), num(c.converged_ms), num(c.best_ms),
         num(c.search_speedup.ratio), c.converged ? 1 : 0, c.search_ms.size(), num(total),
         c.converged_config, c.best_config, num(c.native_ms), num(c.native_speedup.ratio),
         num(c.search_speedup.low), num(c.search_speedup.high), num(c.native_speedup.low),
         num(c.native_speedup.high), c.candidates, c.rounds, c.within_target ? 1 : 0,
-        num(c.search_default_ms), num(c.search_window_load));
+        num(c.search_default_ms), num(c.search_window_load), c.search_default_frames,
+        c.search_calibrated ? 1 : 0);
   }
   cams.commit();
   auto frames = open_out(dir / "search_frames.csv");
@@ -153,9 +154,12 @@ void write_objective_section(std::ostream& md, const std::vector<EvalSummary>& s
             100 * p.compare_target);
   std::vector<double> nn_speed, rbf_speed, search_speed, nn_overhead, nn_roof, rbf_roof;
   std::vector<double> search_native;
-  int comparisons = 0, within_target = 0;
+  int comparisons = 0, within_target = 0, calibrated = 0;
+  std::vector<double> loads;
   for (const EvalSummary& s : summaries) {
     if (s.objective != obj) continue;
+    calibrated += s.search_calibrated;
+    if (s.search_window_load_median > 0) loads.push_back(s.search_window_load_median);
     md << fmt::format(
         "| {} | {} | {} of {}, median {} rounds | {} | {} | {} | {} | {} | {} | {} | {} "
         "| {} ({}) | {} ({}) | {} | {} |\n",
@@ -205,8 +209,13 @@ void write_objective_section(std::ostream& md, const std::vector<EvalSummary>& s
                     render ? "> 95 %" : "NN 92 %, RBF 83 %")
      << fmt::format(
             "| comparisons whose every 95 % interval reached ±{:g} % before the cap of {} "
-            "rounds | {} of {} | — (none published) |\n\n",
-            100 * p.compare_target, p.compare_max_rounds, within_target, comparisons);
+            "rounds | {} of {} | — (none published) |\n",
+            100 * p.compare_target, p.compare_max_rounds, within_target, comparisons)
+     << fmt::format(
+            "| searches' machine load against their comparisons' (the default configuration's "
+            "frames in both windows), median per scene (lowest – highest scene); cameras whose "
+            "search frames were divided by it | {} – {}; {} of {} | — |\n\n",
+            num(min_of(loads)), num(max_of(loads)), calibrated, comparisons);
 }
 
 }  // namespace
@@ -227,14 +236,17 @@ std::vector<EvalSummary> summarise(const EvalResults& r) {
     s.scene = scene;
     s.objective = obj;
     std::vector<RatioInterval> search, search_native;
-    std::vector<double> rounds;
+    std::vector<double> rounds, loads;
     for (const CameraRecord& c : r.cameras)
       if (c.scene == scene && c.objective == obj) {
         search.push_back(c.search_speedup);
         search_native.push_back(c.native_speedup);
         rounds.push_back(c.rounds);
         s.within_target += c.within_target ? 1 : 0;
+        if (c.search_window_load > 0) loads.push_back(c.search_window_load);
+        s.search_calibrated += c.search_calibrated ? 1 : 0;
       }
+    s.search_window_load_median = median(loads);
     s.cameras = static_cast<int>(search.size());
     s.rounds_median = median(rounds);
     s.search_speedup_median = median(ratios_of(search));

@@ -25,6 +25,10 @@ struct EvalSummary {
   double search_speedup_median = 0;         // default / converged, over cameras
   double search_native_speedup_median = 0;  // native Embree / converged, over cameras
   TypicalInterval search_speedup_interval, search_native_speedup_interval;
+  // The searches' window against the comparisons' (CameraRecord::search_window_load), median over
+  // the cameras that have a yardstick, and how many cameras' search frames were calibrated by it.
+  double search_window_load_median = 0;
+  int search_calibrated = 0;
   double nn_speedup_geomean = 0;  // prediction over search, accumulated frames
   double rbf_speedup_geomean = 0;
   double nn_overhead_reduction_median = 0;

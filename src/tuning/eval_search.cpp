@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -38,10 +39,22 @@ tuner::TunerOptions eval_tuner_options(const EvalProfile& p, const std::string& 
   return options;
 }
 
+bool yardstick_after_frame(const EvalProfile& p, int k) {
+  if (p.yardsticks <= 0 || p.iterations <= 0 || k < 0 || k >= p.iterations) return false;
+  const int n = std::min(p.yardsticks, p.iterations);
+  // Frame k closes the j-th of n equal stretches of the search when floor((k+1) n / iterations)
+  // steps up there.
+  return (k + 1) * n / p.iterations > k * n / p.iterations;
+}
+
 namespace {
 
+constexpr const char* kYardstickExtra = "yardstick_ms";
+
 tuner::Extras frame_extras(const EvalFrame& frame) {
-  return {{"build_ms", frame.build_ms}, {"render_ms", frame.render_ms}};
+  tuner::Extras extras = {{"build_ms", frame.build_ms}, {"render_ms", frame.render_ms}};
+  if (frame.yardstick_ms > 0) extras[kYardstickExtra] = frame.yardstick_ms;
+  return extras;
 }
 
 void report_frame(tuner::HybridTuner& tuner, const tuner::Config& config, const EvalFrame& frame) {
@@ -53,8 +66,9 @@ void report_frame(tuner::HybridTuner& tuner, const tuner::Config& config, const 
 
 }  // namespace
 
-EvalFrame measure_search_frame(tuner::HybridTuner& tuner, const tuner::State& state,
-                               EvalCostSource& costs, Objective objective, int camera) {
+EvalFrame measure_search_frame(const EvalProfile& p, int k, tuner::HybridTuner& tuner,
+                               const tuner::State& state, EvalCostSource& costs,
+                               Objective objective, int camera) {
   const tuner::Config config = tuner.suggest(state);
   const FrameCost cost = costs.frame(to_accel_choice(config), camera);
   EvalFrame frame;
@@ -63,6 +77,14 @@ EvalFrame measure_search_frame(tuner::HybridTuner& tuner, const tuner::State& st
   frame.cost_s = cost.ok ? cost.cost_ms(objective) / 1000.0 : 0.0;
   frame.build_ms = cost.build_ms;
   frame.render_ms = cost.render_ms;
+  if (yardstick_after_frame(p, k)) {
+    const FrameCost yardstick =
+        costs.frame(to_accel_choice(tuner.space().default_config()), camera);
+    if (!yardstick.ok)
+      throw std::runtime_error(fmt::format("search {}: the default configuration was refused: {}",
+                                           tuner.options().tuning_key, yardstick.error));
+    frame.yardstick_ms = yardstick.cost_ms(objective);
+  }
   report_frame(tuner, config, frame);
   return frame;
 }
@@ -89,6 +111,7 @@ EvalFrame stored_frame(const tuner::StoredSample& sample) {
   };
   frame.build_ms = extra("build_ms");
   frame.render_ms = extra("render_ms");
+  frame.yardstick_ms = extra(kYardstickExtra);
   return frame;
 }
 

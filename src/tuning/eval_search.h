@@ -20,7 +20,14 @@ struct EvalFrame {
   bool ok = true;      // false: the build was refused, reported as a failure
   double cost_s = 0;   // the reported cost (seconds) when ok
   double build_ms = 0, render_ms = 0;
+  // The default configuration's cost (ms) measured right after this frame as the search window's
+  // yardstick, not reported to the tuner; 0 when none was measured after this frame.
+  double yardstick_ms = 0;
 };
+
+// Whether search frame `k` (from 0) is followed by a yardstick frame: profile.yardsticks of them
+// spread evenly over the search, the last after its last frame.
+bool yardstick_after_frame(const EvalProfile& p, int k);
 
 // The name a scene spec goes by in keys and the report (its file stem).
 std::string eval_scene_name(const std::string& spec);
@@ -39,9 +46,11 @@ tuner::Space eval_space(const EvalProfile& p);
 tuner::TunerOptions eval_tuner_options(const EvalProfile& p, const std::string& run_key,
                                        int camera);
 
-// Suggests, measures and reports one frame.
-EvalFrame measure_search_frame(tuner::HybridTuner& tuner, const tuner::State& state,
-                               EvalCostSource& costs, Objective objective, int camera);
+// Suggests, measures and reports search frame `k` (from 0), then measures the yardstick if
+// yardstick_after_frame(p, k).
+EvalFrame measure_search_frame(const EvalProfile& p, int k, tuner::HybridTuner& tuner,
+                               const tuner::State& state, EvalCostSource& costs,
+                               Objective objective, int camera);
 
 // Suggests and reports `frame` without measuring; throws std::runtime_error if the tuner
 // suggests another configuration than the one `frame` measured.

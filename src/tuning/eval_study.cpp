@@ -32,17 +32,23 @@ namespace fs = std::filesystem;
 struct SearchOutcome {
   CameraSearch search;      // what the predictors learn from
   std::string best_sample;  // AccelChoice text of the lowest sample: a candidate, never a cost
-  double default_ms = 0;    // the search's median frame of the default configuration; 0 if none
+  // The default configuration in the search's window: the median of its frames there (the
+  // yardsticks and the search's own frames of it; every search starts there) and how many;
+  // 0 if none.
+  double default_ms = 0;
+  int default_frames = 0;
 };
 
-// The median of the search's frames of the default configuration (every search starts there,
-// usually its only one); 0 when it has none.
-double default_cost_in_search(const std::vector<tuner::StoredSample>& samples,
-                              const std::string& default_config) {
+// Every cost (ms) of the default configuration measured in the search's window.
+std::vector<double> default_costs_in_search(const std::vector<tuner::StoredSample>& samples,
+                                            const std::string& default_config) {
   std::vector<double> at_default;
-  for (const tuner::StoredSample& s : samples)
+  for (const tuner::StoredSample& s : samples) {
     if (std::isfinite(s.cost) && s.config == default_config) at_default.push_back(s.cost * 1000.0);
-  return median(at_default);
+    const double yardstick = stored_frame(s).yardstick_ms;
+    if (yardstick > 0) at_default.push_back(yardstick);
+  }
+  return at_default;
 }
 
 // A refused build counts as a frame rendered with the default tree, at the cost the search
@@ -59,7 +65,10 @@ double refused_frame_cost(const std::vector<tuner::StoredSample>& samples, doubl
 SearchOutcome search_outcome(const std::vector<tuner::StoredSample>& samples,
                              const tuner::Space& space, tuner::Config incumbent) {
   SearchOutcome o;
-  o.default_ms = default_cost_in_search(samples, space.default_config().to_string());
+  const std::vector<double> at_default =
+      default_costs_in_search(samples, space.default_config().to_string());
+  o.default_ms = median(at_default);
+  o.default_frames = static_cast<int>(at_default.size());
   const double refused_ms = refused_frame_cost(samples, o.default_ms);
   double best_ms = kNever;
   o.best_sample = to_accel_choice(space.default_config()).to_string();
@@ -81,6 +90,7 @@ void add_comparison(CameraRecord& r, const EvalComparison& c) {
   const std::string native_config = AccelChoice::native().to_string();
   r.default_ms = c.cost_ms(default_config);
   if (r.search_default_ms > 0) r.search_window_load = r.search_default_ms / r.default_ms;
+  r.search_calibrated = r.search_default_frames >= kMinYardstickFrames && r.search_window_load > 0;
   r.native_ms = c.cost_ms(native_config);
   r.converged_ms = c.cost_ms(r.converged_config);
   r.best_config = c.fastest();
@@ -103,13 +113,14 @@ PredictionRecord prediction_record(const EvalProfile& p, const CameraRecord& r,
   pr.predictor = prediction.predictor;
   pr.config = prediction.config;
   pr.predicted_ms = c.cost_ms(pr.config);
-  pr.search_total_ms = accumulated_search_time(r.search_ms, r.converged_ms, p.iterations);
-  pr.speedup = prediction_speedup(r.search_ms, r.converged_ms, pr.predicted_ms, p.iterations);
+  const std::vector<double> search_ms = r.search_ms_in_comparison_window();
+  pr.search_total_ms = accumulated_search_time(search_ms, r.converged_ms, p.iterations);
+  pr.speedup = prediction_speedup(search_ms, r.converged_ms, pr.predicted_ms, p.iterations);
   pr.overhead_reduction =
-      overhead_reduction(r.search_ms, r.converged_ms, pr.predicted_ms, r.best_ms, p.iterations);
+      overhead_reduction(search_ms, r.converged_ms, pr.predicted_ms, r.best_ms, p.iterations);
   pr.roofline = c.ratio(r.best_config, pr.config);
   pr.native_speedup = c.ratio(AccelChoice::native().to_string(), pr.config);
-  pr.break_even = break_even_frame(r.search_ms, r.converged_ms, pr.predicted_ms);
+  pr.break_even = break_even_frame(search_ms, r.converged_ms, pr.predicted_ms);
   return pr;
 }
 
@@ -276,7 +287,8 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         const int64_t signature = tuner.signature_id();
         const size_t done = tuner.database()->samples(signature).size();
         for (size_t k = done; k < static_cast<size_t>(p.iterations); ++k)
-          measure_search_frame(tuner, scene->states[ci], *costs, objective, camera);
+          measure_search_frame(p, static_cast<int>(k), tuner, scene->states[ci], *costs, objective,
+                               camera);
         const tuner::Config incumbent = tuner.best(scene->states[ci]);
         SearchOutcome& search = searches[ci];
         search = search_outcome(tuner.database()->samples(signature), space, incumbent);
@@ -287,6 +299,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
         for (const auto& [config, ms] : search.search.samples) r.search_ms.push_back(ms);
         r.search_ms.resize(std::min(r.search_ms.size(), static_cast<size_t>(p.iterations)));
         r.search_default_ms = search.default_ms;
+        r.search_default_frames = search.default_frames;
         if (auto summary = tuner.summary(scene->states[ci])) r.converged = summary->converged;
         r.converged_config = to_accel_choice(incumbent).to_string();
         if (log)

@@ -134,6 +134,9 @@ TEST(Eval, QuickProfileProducesAConsistentReport) {
     EXPECT_NEAR(std::stod(row[col(ch, "search_window_load")]), search_default_ms / default_ms,
                 2e-3 * (1 + search_default_ms / default_ms))
         << key;
+    // The quick profile's 3 yardsticks and the search's own first frame: calibrated.
+    EXPECT_GE(std::stoi(row[col(ch, "search_default_frames")]), 4) << key;
+    EXPECT_EQ(row[col(ch, "search_calibrated")], "1") << key;
   }
   auto median_of = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());

@@ -1,10 +1,10 @@
 // Synthetic frame costs (tuning/eval_costs.h) as a machine whose load changes would give them,
 // deterministically: the test of a comparison protocol needs noise it controls. At each camera
-// the first `search_frames` frames are the camera's search and pass unchanged (but one, made
-// lucky on purpose); every later frame belongs to the camera's comparison and is scaled by the
-// load of its round. A round ends where a configuration comes again (a comparison's warm-up and
-// each of its rounds measure every candidate once), so a load change hits every candidate of a
-// round alike, as a change between two rounds would.
+// the first `search_frames` frames are the camera's search and pass scaled by `search_load` (and
+// one, made lucky on purpose, by its factor too); every later frame belongs to the camera's
+// comparison and is scaled by the load of its round. A round ends where a configuration comes again
+// (a comparison's warm-up and each of its rounds measure every candidate once), so a load change
+// hits every candidate of a round alike, as a change between two rounds would.
 #pragma once
 
 #include <map>
@@ -18,7 +18,8 @@
 namespace tuneray::testing {
 
 struct MachineLoad {
-  int search_frames = 0;             // per camera
+  int search_frames = 0;             // per camera, yardstick frames included
+  double search_load = 1;            // every search frame costs this many times its cost
   std::vector<double> load = {1.0};  // by comparison round (round 0 = the warm-up), cycled
   int lucky_frame = -1;              // this search frame at each camera costs...
   double lucky_factor = 1;           // ...this fraction of its cost
@@ -39,6 +40,7 @@ class LoadedMachine : public EvalCostSource {
     Window& w = windows_[camera];
     if (w.search_frames < load_.search_frames) {
       if (w.search_frames++ == load_.lucky_frame) scale(cost, load_.lucky_factor);
+      scale(cost, load_.search_load);
       return cost;
     }
     const std::string config = choice.to_string();

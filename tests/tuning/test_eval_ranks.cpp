@@ -186,7 +186,7 @@ TEST_F(EvalRanks, ContinuesASearchTheDatabaseHoldsInPart) {
     tuner::HybridTuner tuner(eval_space(p), make_indicator_schema(), options);
     auto costs = make_eval_costs(p, *scene, Objective::kTotal);
     for (int k = 0; k < 3; ++k)
-      measure_search_frame(tuner, scene->states[2], *costs, Objective::kTotal, 2);
+      measure_search_frame(p, k, tuner, scene->states[2], *costs, Objective::kTotal, 2);
   }
   expect_same_results(reference, run_on_ranks(p, paths("partial")));
 }

@@ -30,6 +30,7 @@ EvalProfile one_scene_profile() {
   p.repetitions = 2;
   p.synthetic_costs = true;
   p.native_in_space = false;  // more distinct configurations to compare
+  p.yardsticks = 0;           // the search window is p.iterations frames (but in the test of them)
   return p;
 }
 
@@ -177,6 +178,51 @@ TEST_F(EvalStudyComparisons, AnInterruptedComparisonIsMeasuredAgainWholeInOneWin
   for (size_t i = 0; i < whole.predictions.size(); ++i) {
     EXPECT_EQ(resumed.predictions[i].predicted_ms, whole.predictions[i].predicted_ms);
     EXPECT_EQ(resumed.predictions[i].roofline.ratio, whole.predictions[i].roofline.ratio);
+  }
+}
+
+TEST_F(EvalStudyComparisons, TheYardstickPutsTheSearchFramesInTheComparisonsWindow) {
+  const EvalResults quiet = run("quiet", nullptr);
+  // The same study with the searches run on a machine twice as slow, and one of the yardstick
+  // frames stopped 30 times longer than it should take.
+  p_.yardsticks = 3;
+  int window = p_.iterations;
+  std::vector<int> after;  // the search frames a yardstick follows
+  for (int k = 0; k < p_.iterations; ++k)
+    if (yardstick_after_frame(p_, k)) after.push_back(k);
+  ASSERT_EQ(after, (std::vector<int>{2, 5, 7}));  // evenly spread, the last after the last frame
+  window += static_cast<int>(after.size());
+  MachineLoad slow_search;
+  slow_search.search_frames = window;
+  slow_search.search_load = 2;
+  slow_search.lucky_frame = after[0] + 1;  // the window's frame after search frame 2
+  slow_search.lucky_factor = 30;
+  const EvalResults slow = run("slow", &slow_search);
+  ASSERT_EQ(slow.cameras.size(), quiet.cameras.size());
+  for (size_t i = 0; i < quiet.cameras.size(); ++i) {
+    const CameraRecord &q = quiet.cameras[i], &s = slow.cameras[i];
+    SCOPED_TRACE("camera " + std::to_string(q.camera));
+    // The first frame (the default) and three yardsticks, one of them stopped: their median is
+    // twice the comparison's cost of the default.
+    EXPECT_EQ(s.search_default_frames, 4);
+    EXPECT_NEAR(s.search_window_load, 2.0, 1e-12);
+    EXPECT_TRUE(s.search_calibrated);
+    ASSERT_EQ(s.search_ms.size(), q.search_ms.size());
+    for (size_t k = 0; k < q.search_ms.size(); ++k) {
+      EXPECT_NEAR(s.search_ms[k], 2 * q.search_ms[k], 1e-9 * q.search_ms[k]);  // as measured
+      EXPECT_NEAR(s.search_ms_in_comparison_window()[k], q.search_ms[k], 1e-9 * q.search_ms[k]);
+    }
+    EXPECT_FALSE(q.search_calibrated);  // one frame of the default only
+    EXPECT_NEAR(q.search_window_load, 1.0, 1e-12);
+  }
+  // So the figures that set the search against the comparison are those of the quiet machine.
+  ASSERT_EQ(slow.predictions.size(), quiet.predictions.size());
+  for (size_t i = 0; i < quiet.predictions.size(); ++i) {
+    const PredictionRecord &q = quiet.predictions[i], &s = slow.predictions[i];
+    EXPECT_EQ(s.config, q.config);
+    EXPECT_NEAR(s.speedup, q.speedup, 1e-9 * q.speedup);
+    EXPECT_NEAR(s.overhead_reduction, q.overhead_reduction, 1e-9);
+    EXPECT_EQ(s.break_even, q.break_even);
   }
 }
 
