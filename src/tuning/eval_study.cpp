@@ -131,11 +131,12 @@ std::string comparison_line(const CameraRecord& r, const EvalProfile& p) {
   return fmt::format(
       "{:<14} {:<6} camera {:>3}: {} configurations compared in {} rounds ({}): default {:8.2f} "
       "ms, native {:8.2f} ms, converged {:8.2f} ms ({} default, {} native), best known {:8.2f} "
-      "ms",
+      "ms; the search's window {:.2f}x as loaded{}",
       r.scene, r.objective, r.camera, r.candidates, r.rounds,
       r.within_target ? fmt::format("within ±{:g} %", 100 * p.compare_target) : "cap reached",
       r.default_ms, r.native_ms, r.converged_ms, interval(r.search_speedup),
-      interval(r.native_speedup), r.best_ms);
+      interval(r.native_speedup), r.best_ms, r.search_window_load,
+      r.search_calibrated ? " (calibrated)" : "");
 }
 
 std::vector<std::string> unique_hardware(const std::vector<std::string>& hardware) {
