@@ -32,6 +32,12 @@ double Film::variance_of_mean(int x, int y) const {
          (3.0 * n * (n - 1));
 }
 
+uint64_t Film::total_samples() const {
+  uint64_t total = 0;
+  for (uint32_t n : samples_) total += n;
+  return total;
+}
+
 double Film::estimated_rmse() const {
   double total = 0;
   for (int y = 0; y < height(); ++y)
@@ -57,6 +63,10 @@ void Film::clear() {
   std::fill(square_sum_.begin(), square_sum_.end(), SquareSum{});
   std::fill(sum_.data(), sum_.data() + sum_.pixel_count(), Color(0.0f));
   std::fill(samples_.begin(), samples_.end(), 0u);
+  for (int h = 0; h < 2; ++h) {
+    std::fill(half_sum_[h].data(), half_sum_[h].data() + half_sum_[h].pixel_count(), Color(0.0f));
+    std::fill(half_samples_[h].begin(), half_samples_[h].end(), 0u);
+  }
 }
 
 }  // namespace tuneray

@@ -24,32 +24,69 @@ struct SquareSum {
   }
 };
 
+// One pixel's samples of a pass, with their indices' parity: the film also keeps two half
+// films (even and odd sample indices), independent estimates of the same pixel that let the
+// denoiser measure its own error (render/denoiser_selection.h).
+struct PixelSamples {
+  Color sum{0.0f};
+  uint32_t count = 0;
+  SquareSum squares;
+  Color half_sum[2] = {Color(0.0f), Color(0.0f)};
+  uint32_t half_count[2] = {0, 0};
+  void add(Color radiance, uint32_t sample_index) {
+    sum += radiance;
+    ++count;
+    squares.add(radiance);
+    half_sum[sample_index & 1] += radiance;
+    ++half_count[sample_index & 1];
+  }
+};
+
 class Film {
  public:
-  // Upper bound of a render's memory per pixel: the film (sum, count, squares), the resolved
-  // image and its file encoding, the schedulers' and adaptive sampling's per-pixel arrays.
-  static constexpr uint64_t kBytesPerPixelBound = 128;
+  // Upper bound of a render's memory per pixel: the film (sum, count, squares, two halves),
+  // the resolved image and its file encoding, the schedulers' and adaptive sampling's
+  // per-pixel arrays.
+  static constexpr uint64_t kBytesPerPixelBound = 160;
 
   Film(int width, int height)
       : sum_(width, height),
         samples_(static_cast<size_t>(width) * height, 0),
-        square_sum_(static_cast<size_t>(width) * height) {}
+        square_sum_(static_cast<size_t>(width) * height),
+        half_sum_{Image(width, height), Image(width, height)},
+        half_samples_{std::vector<uint32_t>(static_cast<size_t>(width) * height, 0),
+                      std::vector<uint32_t>(static_cast<size_t>(width) * height, 0)} {}
 
   int width() const { return sum_.width(); }
   int height() const { return sum_.height(); }
 
   // Single writer per pixel (tiles do not overlap), so no synchronisation. `squares` sums the
   // samples' squared channels (variance estimates for adaptive sampling and error estimates).
+  // Samples given without their indices all go to the half of the pixel's sample count's
+  // parity, so one-sample adds alternate between the halves as the schedulers' indices do.
   void add(int x, int y, Color radiance_sum, uint32_t count, const SquareSum& squares = {}) {
-    sum_.at(x, y) += radiance_sum;
-    size_t i = static_cast<size_t>(y) * width() + x;
-    samples_[i] += count;
-    square_sum_[i].r += squares.r;
-    square_sum_[i].g += squares.g;
-    square_sum_[i].b += squares.b;
+    const size_t i = static_cast<size_t>(y) * width() + x;
+    const int half = samples_[i] & 1;
+    add_full(x, y, radiance_sum, count, squares);
+    half_sum_[half].at(x, y) += radiance_sum;
+    half_samples_[half][i] += count;
+  }
+  void add(int x, int y, const PixelSamples& s) {
+    add_full(x, y, s.sum, s.count, s.squares);
+    const size_t i = static_cast<size_t>(y) * width() + x;
+    for (int h = 0; h < 2; ++h) {
+      half_sum_[h].at(x, y) += s.half_sum[h];
+      half_samples_[h][i] += s.half_count[h];
+    }
   }
   uint32_t samples(int x, int y) const { return samples_[static_cast<size_t>(y) * width() + x]; }
+  uint64_t total_samples() const;                                 // over all pixels
   const Color& sum(int x, int y) const { return sum_.at(x, y); }  // of the pixel's samples
+  // The half films: samples of even (half 0) and odd (half 1) index.
+  uint32_t half_samples(int half, int x, int y) const {
+    return half_samples_[half][static_cast<size_t>(y) * width() + x];
+  }
+  const Color& half_sum(int half, int x, int y) const { return half_sum_[half].at(x, y); }
 
   // Estimated variance of the pixel's mean, averaged over r, g and b (sample variance / n); 0
   // below 2 samples.
@@ -68,9 +105,20 @@ class Film {
   void clear();
 
  private:
+  void add_full(int x, int y, Color radiance_sum, uint32_t count, const SquareSum& squares) {
+    sum_.at(x, y) += radiance_sum;
+    size_t i = static_cast<size_t>(y) * width() + x;
+    samples_[i] += count;
+    square_sum_[i].r += squares.r;
+    square_sum_[i].g += squares.g;
+    square_sum_[i].b += squares.b;
+  }
+
   Image sum_;
   std::vector<uint32_t> samples_;
   std::vector<SquareSum> square_sum_;
+  Image half_sum_[2];
+  std::vector<uint32_t> half_samples_[2];
 };
 
 }  // namespace tuneray

@@ -136,19 +136,16 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
               size_t pixel = static_cast<size_t>(y) * settings_.width + x;
               uint32_t first = work.first(pixel), n = work.count(pixel);
               if (n == 0) continue;
-              Color sum(0.0f);
-              SquareSum squares;
+              PixelSamples samples;
               for (uint32_t s = 0; s < n; ++s) {
                 sampler->start_pixel_sample(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
                                             first + s);
                 std::array<float, 4> u = sampler->next4();
                 Ray ray = camera_.generate_ray({x + u[0], y + u[1]}, {u[2], u[3]});
-                Color L = integrator_.radiance(ray, *sampler, local, clamp.at(pixel));
-                sum += L;
-                squares.add(L);
+                samples.add(integrator_.radiance(ray, *sampler, local, clamp.at(pixel)), first + s);
               }
               local_samples += n;
-              film.add(x, y, sum, n, squares);
+              film.add(x, y, samples);
             }
           if (profile) local.total_ns += now_ns() - t0;
           if (on_tile_done) on_tile_done();
@@ -269,15 +266,10 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
           k = 0;
           for (size_t p = p0; p < p1; ++p) {
             if (count[p] == 0) continue;
-            Color sum(0.0f);
-            SquareSum squares;
-            for (uint32_t s = 0; s < count[p]; ++s, ++k) {
-              Color L = integrator_.finish(b.states[k], local, clamp.at(p));
-              sum += L;
-              squares.add(L);
-            }
-            film.add(static_cast<int>(p % width), static_cast<int>(p / width), sum, count[p],
-                     squares);
+            PixelSamples samples;
+            for (uint32_t s = 0; s < count[p]; ++s, ++k)
+              samples.add(integrator_.finish(b.states[k], local, clamp.at(p)), first[p] + s);
+            film.add(static_cast<int>(p % width), static_cast<int>(p / width), samples);
           }
           if (profile) local.total_ns += now_ns() - t_chunk;
         }
