@@ -1,5 +1,7 @@
 #include "render/denoiser.h"
 
+#include "render/staggered_allocator.h"
+
 #include <immintrin.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -9,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 
 namespace tuneray {
 
@@ -20,6 +23,8 @@ constexpr float kB3[3] = {3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f};
 constexpr float kMinAlbedo = 0.01f;
 // Exponents beyond this give weights below 1e-34: zero for our purposes.
 constexpr float kMaxExponent = 80.0f;
+// Taps 2^15 pixels apart reach beyond any image we render.
+constexpr int kMostIterations = 16;
 // Added to the noise variance: without noise only an (almost) equal luminance passes.
 constexpr float kTinyNoise = 1e-20f;
 
@@ -61,9 +66,9 @@ void for_rows(int height, F&& rows) {
 
 // Unknown variances (pixels with one sample): the spread of the 3x3 neighbourhood's
 // luminance, as a one-sample pixel's variance is that of a single sample.
-std::vector<float> completed_variance(const NoisyImage& in) {
+FloatPlane completed_variance(const NoisyImage& in) {
   const int w = in.color.width(), h = in.color.height();
-  std::vector<float> v = in.variance;
+  FloatPlane v(in.variance.begin(), in.variance.end());
   for_rows(h, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < w; ++x) {
@@ -106,7 +111,7 @@ std::vector<uint8_t> near_emitters(const DenoiseFeatures& f) {
 
 // The guides as planes of floats (the tap loop reads them with unit stride).
 struct GuidePlanes {
-  std::vector<float> nx, ny, nz, ar, ag, ab;
+  FloatPlane nx, ny, nz, ar, ag, ab;
   explicit GuidePlanes(const DenoiseFeatures& f) {
     for (const Vec3f& n : f.normal) {
       nx.push_back(n.x);
@@ -124,32 +129,49 @@ struct GuidePlanes {
 // One iteration's state: light at the surface (the image divided by the albedo), its
 // variance, and which pixels have a value (1 or 0).
 struct Layer {
-  std::vector<float> r, g, b, variance, valid;
+  FloatPlane r, g, b, variance, valid;
   explicit Layer(size_t n) : r(n), g(n), b(n), variance(n), valid(n) {}
 };
 
 // SVGF's 3x3 Gaussian of the variance, times `scale`: a steadier noise level for the
-// luminance weight.
-void blur_variance(const Layer& in, int w, int h, float scale, std::vector<float>& out) {
-  constexpr float k[2] = {0.5f, 0.25f};
+// luminance weight. Separable (rows, then columns of the row sums), with pixels without a value
+// weighted 0: the kernel is a product and the mask a per-pixel factor.
+void blur_variance(const Layer& in, int w, int h, float scale, FloatPlane& out) {
+  const size_t pixels = static_cast<size_t>(w) * h;
+  FloatPlane sum(pixels), weight(pixels);
   for_rows(h, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
+    for (int y = y0; y < y1; ++y) {
+      const size_t row = static_cast<size_t>(y) * w;
+      const float* __restrict v = in.variance.data() + row;
+      const float* __restrict m = in.valid.data() + row;
+      float* __restrict s = sum.data() + row;
+      float* __restrict k = weight.data() + row;
       for (int x = 0; x < w; ++x) {
-        float sum = 0, weight = 0;
-        for (int dy = -1; dy <= 1; ++dy) {
-          int yy = y + dy;
-          if (yy < 0 || yy >= h) continue;
-          for (int dx = -1; dx <= 1; ++dx) {
-            int xx = x + dx;
-            if (xx < 0 || xx >= w) continue;
-            size_t q = static_cast<size_t>(yy) * w + xx;
-            float kk = k[std::abs(dx)] * k[std::abs(dy)] * in.valid[q];
-            sum += kk * in.variance[q];
-            weight += kk;
-          }
+        float vs = 0.5f * m[x] * v[x], ks = 0.5f * m[x];
+        if (x > 0) {
+          vs += 0.25f * m[x - 1] * v[x - 1];
+          ks += 0.25f * m[x - 1];
         }
-        out[static_cast<size_t>(y) * w + x] = weight > 0 ? scale * sum / weight : 0.0f;
+        if (x + 1 < w) {
+          vs += 0.25f * m[x + 1] * v[x + 1];
+          ks += 0.25f * m[x + 1];
+        }
+        s[x] = vs;
+        k[x] = ks;
       }
+    }
+  });
+  for_rows(h, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const size_t row = static_cast<size_t>(y) * w;
+      const size_t up = y > 0 ? row - w : row, down = y + 1 < h ? row + w : row;
+      const float up_k = y > 0 ? 0.25f : 0.0f, down_k = y + 1 < h ? 0.25f : 0.0f;
+      for (int x = 0; x < w; ++x) {
+        const float vs = 0.5f * sum[row + x] + up_k * sum[up + x] + down_k * sum[down + x];
+        const float ks = 0.5f * weight[row + x] + up_k * weight[up + x] + down_k * weight[down + x];
+        out[row + x] = ks > 0 ? scale * vs / ks : 0.0f;
+      }
+    }
   });
 }
 
@@ -260,9 +282,8 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, cons
   }
 }
 
-void atrous_step(const Layer& in, Layer& out, const std::vector<float>& lum,
-                 const std::vector<float>& noise, const GuidePlanes& guide, int w, int h, int step,
-                 const DenoiseParams& params) {
+void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const FloatPlane& noise,
+                 const GuidePlanes& guide, int w, int h, int step, const DenoiseParams& params) {
   const float inv_albedo_sigma2 = 1.0f / (params.sigma_albedo * params.sigma_albedo);
   for_rows(h, [&](int y0, int y1) {
     RowSums s(w);
@@ -348,15 +369,19 @@ NoisyImage noisy_image(const Film& film) {
   return in;
 }
 
-Image denoise(const NoisyImage& in, const DenoiseFeatures& f, const DenoiseParams& params) {
+std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f,
+                                  const DenoiseParams& params, int first_kept) {
   const int w = in.color.width(), h = in.color.height();
   const size_t pixels = static_cast<size_t>(w) * h;
   if (f.width != w || f.height != h || f.albedo.size() != pixels || f.normal.size() != pixels ||
       (!f.emitter.empty() && f.emitter.size() != pixels) || in.variance.size() != pixels ||
       in.has_estimate.size() != pixels)
     throw std::invalid_argument("denoise: image, variance and features differ in size");
+  if (params.iterations < 0 || params.iterations > kMostIterations)
+    throw std::invalid_argument("denoise: iterations must be in [0, " +
+                                std::to_string(kMostIterations) + "]");
 
-  const std::vector<float> variance = completed_variance(in);
+  const FloatPlane variance = completed_variance(in);
   const std::vector<uint8_t> kept = near_emitters(f);
   const GuidePlanes guide(f);
   Layer a(pixels);
@@ -369,32 +394,43 @@ Image denoise(const NoisyImage& in, const DenoiseFeatures& f, const DenoiseParam
     a.variance[p] = variance[p] * d * d;
     a.valid[p] = in.has_estimate[p] && !kept[p] ? 1.0f : 0.0f;
   }
+  // The change, remodulated: a pixel the filter left alone keeps its exact value; one without
+  // an estimate gets the filtered light times its albedo.
+  auto remodulated = [&](const Layer& filtered_layer) {
+    Image out(w, h);
+    for (size_t p = 0; p < pixels; ++p) {
+      const Color& c = in.color.data()[p];
+      const Color& albedo = f.albedo[p];
+      const Color filtered(filtered_layer.r[p], filtered_layer.g[p], filtered_layer.b[p]);
+      const Color scale(std::max(albedo.x, kMinAlbedo), std::max(albedo.y, kMinAlbedo),
+                        std::max(albedo.z, kMinAlbedo));
+      const Color original(c.x * demodulator(albedo.x), c.y * demodulator(albedo.y),
+                           c.z * demodulator(albedo.z));
+      if (kept[p])
+        out.data()[p] = c;
+      else
+        out.data()[p] = in.has_estimate[p] ? c + (filtered - original) * scale : filtered * scale;
+    }
+    return out;
+  };
+
+  std::vector<Image> levels;
+  if (first_kept <= 0) levels.push_back(in.color);
   Layer b(pixels);
-  std::vector<float> lum(pixels), noise(pixels);
+  FloatPlane lum(pixels), noise(pixels);
   for (int i = 0; i < params.iterations; ++i) {
     for (size_t p = 0; p < pixels; ++p) lum[p] = luminance(Color(a.r[p], a.g[p], a.b[p]));
     blur_variance(a, w, h, params.sigma_luminance * params.sigma_luminance, noise);
     atrous_step(a, b, lum, noise, guide, w, h, 1 << i, params);
     std::swap(a, b);
+    if (i + 1 >= first_kept) levels.push_back(remodulated(a));
   }
+  if (levels.empty()) levels.push_back(in.color);  // no iterations: the input itself
+  return levels;
+}
 
-  // The change, remodulated: a pixel the filter left alone keeps its exact value; one without
-  // an estimate gets the filtered light times its albedo.
-  Image out(w, h);
-  for (size_t p = 0; p < pixels; ++p) {
-    const Color& c = in.color.data()[p];
-    const Color& albedo = f.albedo[p];
-    const Color filtered(a.r[p], a.g[p], a.b[p]);
-    const Color scale(std::max(albedo.x, kMinAlbedo), std::max(albedo.y, kMinAlbedo),
-                      std::max(albedo.z, kMinAlbedo));
-    const Color original(c.x * demodulator(albedo.x), c.y * demodulator(albedo.y),
-                         c.z * demodulator(albedo.z));
-    if (kept[p])
-      out.data()[p] = c;
-    else
-      out.data()[p] = in.has_estimate[p] ? c + (filtered - original) * scale : filtered * scale;
-  }
-  return out;
+Image denoise(const NoisyImage& in, const DenoiseFeatures& f, const DenoiseParams& params) {
+  return std::move(denoise_levels(in, f, params, params.iterations).back());
 }
 
 }  // namespace tuneray

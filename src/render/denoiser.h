@@ -42,4 +42,11 @@ NoisyImage noisy_image(const Film& film);
 Image denoise(const NoisyImage& in, const DenoiseFeatures& features,
               const DenoiseParams& params = {});
 
+// The image after 0 (the input), 1, ..., params.iterations iterations: filters of rising
+// strength (each iteration doubles the reach) for the price of the strongest. Only levels from
+// `first_kept` on are returned (the strongest alone when first_kept = iterations). Throws as
+// denoise does.
+std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& features,
+                                  const DenoiseParams& params, int first_kept = 0);
+
 }  // namespace tuneray
