@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "render/denoiser_selection.h"
+
 namespace tuneray {
 
 Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
@@ -9,7 +11,23 @@ Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
   Image image;
   if (renderer.settings().quality.denoise) {
     if (!features_) features_ = render_denoise_features(renderer);
-    image = denoise(noisy_image(film), *features_, params_);
+    const uint64_t samples = film.total_samples();
+    if (static_cast<double>(samples) <
+        kFirstChoiceSpp * static_cast<double>(film.width()) * film.height()) {
+      // Too few pixels have samples in both halves for a choice; the strongest is what the
+      // choice gives where no pixel of the window has both.
+      choice_.clear();
+      image = denoise(noisy_image(film), *features_, params_);
+    } else {
+      if (choice_.empty() || samples < chosen_at_samples_ ||
+          static_cast<double>(samples) >=
+              kReselectGrowth * static_cast<double>(chosen_at_samples_)) {
+        choice_ = choose_strength(noisy_half_image(film, 0), noisy_half_image(film, 1), *features_,
+                                  params_, selection_);
+        chosen_at_samples_ = samples;
+      }
+      image = denoise_chosen(noisy_image(film), *features_, params_, choice_);
+    }
   } else {
     image = film.resolve();
   }

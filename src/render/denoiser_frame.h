@@ -1,13 +1,17 @@
 // The image a frame shows: the film's estimate, denoised when the renderer's settings ask for
-// it (QualityOptions::denoise). The film is never changed, so it keeps accumulating the
+// it (QualityOptions::denoise), each pixel to the strength its half films choose
+// (render/denoiser_selection.h). The film is never changed, so it keeps accumulating the
 // unbiased estimate and every frame filters the better estimate afresh.
 #pragma once
 
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "image/image.h"
 #include "render/denoiser.h"
 #include "render/denoiser_features.h"
+#include "render/denoiser_selection.h"
 #include "render/film.h"
 #include "render/tile_renderer.h"
 
@@ -15,19 +19,33 @@ namespace tuneray {
 
 class FrameResolver {
  public:
-  explicit FrameResolver(DenoiseParams params = {}) : params_(params) {}
+  explicit FrameResolver(DenoiseParams params = {}, SelectionParams selection = {})
+      : params_(params), selection_(selection) {}
 
   // The features are rendered on the first denoised frame and kept.
   Image resolve(const TileRenderer& renderer, const Film& film);
-  // Call after TileRenderer::set_camera: the kept features show the old view.
-  void camera_moved() { features_.reset(); }
+  // Call after TileRenderer::set_camera: the kept features and strengths show the old view.
+  void camera_moved() {
+    features_.reset();
+    choice_.clear();
+  }
 
   // Time of the last resolve (features included when they were rendered) in ms.
   double last_ms() const { return last_ms_; }
 
  private:
   DenoiseParams params_;
+  SelectionParams selection_;
   std::optional<DenoiseFeatures> features_;
+  // The per-pixel strengths the halves chose, and the film's sample count then. Filtering both
+  // halves costs twice the frame's own filtering, and the choice changes slowly with the
+  // samples, so it is renewed only once the film has kReselectGrowth times the samples.
+  static constexpr double kReselectGrowth = 1.5;
+  // Below this many samples per pixel on average the strongest filter is used: at 2 spp each
+  // half has one sample per pixel.
+  static constexpr double kFirstChoiceSpp = 2;
+  std::vector<uint8_t> choice_;
+  uint64_t chosen_at_samples_ = 0;
   double last_ms_ = 0;
 };
 
