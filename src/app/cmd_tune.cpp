@@ -57,7 +57,7 @@ int run_tune(TuneArgs& a) {
   TuneSummary sum = summarize_tune(report);
   fmt::print("\n{:>6} {:>8} {:>11} {:>11} {:>11} {:>8} {:>15} {:>9} {:>15} {:>6} {:>14}  {}\n",
              "camera", "mode", "default ms", "native ms", "chosen ms", "speedup", "95 % interval",
-             "vs native", "95 % interval", "rounds", "frames total", "configuration");
+             "vs native", "95 % interval", "rounds", "search ms", "configuration");
   for (const auto& c : report.cameras)
     fmt::print(
         "{:>6} {:>8} {:>11.2f} {:>11.2f} {:>11.2f} {:>8.3f} {:>15} {:>9.3f} {:>15} {:>6} "
@@ -66,7 +66,7 @@ int run_tune(TuneArgs& a) {
         fmt::format("[{:.3f}, {:.3f}]", c.speedup_low, c.speedup_high), c.vs_native(),
         fmt::format("[{:.3f}, {:.3f}]", c.vs_native_low, c.vs_native_high),
         fmt::format("{}{}", c.compare_rounds, c.compare_within_target ? "" : "*"), c.accumulated_ms,
-        c.config);
+        c.config + (c.race_changed_choice ? " (race)" : ""));
   fmt::print(
       "\nspeedup over the default configuration: median {:.3f}, geometric mean {:.3f}; "
       "{} of {} cameras searched, {} failed builds\n",
@@ -76,6 +76,11 @@ int run_tune(TuneArgs& a) {
       "speedup over native Embree (medium): median {:.3f}, geometric mean {:.3f}; "
       "tuned BVH chosen at {} of {} cameras\n",
       sum.vs_native_median, sum.vs_native_geomean, sum.tuned, report.cameras.size());
+  if (a.options.finalists > 0)
+    fmt::print(
+        "race of the finalists: {} frames beside the searches' {}; chose another configuration "
+        "than the tuner's best at {} of {} cameras\n",
+        sum.race_frames, sum.search_frames, sum.race_changed, report.cameras.size());
   if (sum.capped > 0)
     fmt::print(
         "* {} of {} cameras reached the round cap with an interval wider than ±{:.0f} %: the "
@@ -130,6 +135,14 @@ CommandAction add_tune_command(CLI::App& app) {
   cmd->add_flag("--tuned-only", a->tuned_only,
                 "Search the tuned BVH's parameters only, without native Embree as a choice "
                 "(stored under its own tuning key; native is still measured as a yardstick)");
+  cmd->add_option("--finalists", o.finalists,
+                  "The search's best configurations raced (with native Embree) before choosing; "
+                  "0: the tuner's best, unraced")
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
+  cmd->add_option("--race-rounds", o.race_rounds, "Interleaved rounds of the finalists' race")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   cmd->add_option("--baseline-repeats", o.baseline_repeats,
                   "Interleaved rounds of default, native and chosen per camera, at least")
       ->check(CLI::Range(1, 1000))

@@ -13,6 +13,9 @@ TuneSummary summarize_tune(const TuneReport& report) {
     s.searched += c.mode == "search";
     s.tuned += c.backend == "tuned";
     s.capped += !c.compare_within_target;
+    s.race_changed += c.race_changed_choice;
+    s.race_frames += c.race_frames;
+    s.search_frames += c.frames;
   }
   s.speedup_median = median(speedups);
   s.speedup_geomean = geometric_mean(speedups);
@@ -39,6 +42,9 @@ nlohmann::json tune_report_json(const TuneOptions& o, const std::string& objecti
                     {"compare_rounds", c.compare_rounds},
                     {"compare_within_target", c.compare_within_target},
                     {"accumulated_ms", c.accumulated_ms},
+                    {"race_candidates", c.race_candidates},
+                    {"race_frames", c.race_frames},
+                    {"race_changed_choice", c.race_changed_choice},
                     {"backend", c.backend},
                     {"config", c.config},
                     {"converged", c.converged}});
@@ -53,10 +59,14 @@ nlohmann::json tune_report_json(const TuneOptions& o, const std::string& objecti
           {"spp", o.spp},
           {"iterations", o.iterations},
           {"baseline_repeats", o.baseline_repeats},
+          {"finalists", o.finalists},
+          {"race_rounds", o.race_rounds},
           {"compare_max_rounds", o.compare_max_rounds},
           {"compare_target", o.compare_target},
           {"cameras", cams},
           {"failed_builds", report.failed_builds},
+          {"race", {{"changed_choice", s.race_changed}, {"frames", s.race_frames},
+                    {"search_frames", s.search_frames}}},
           {"speedup", {{"median", s.speedup_median}, {"geomean", s.speedup_geomean}}},
           {"vs_native", {{"median", s.vs_native_median}, {"geomean", s.vs_native_geomean}}}};
 }

@@ -1,8 +1,10 @@
 #include "tuner/hybrid_tuner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include "tuner/hardware_signature.h"
 #include "tuner/token_io.h"
@@ -231,24 +233,35 @@ int64_t HybridTuner::config_id(const Config& config) {
 // (n median + prior) / (n + 1) with prior = the median of the configurations' medians: a
 // configuration must beat the others by more than the noise of one frame, or be measured again,
 // to become the best. Configurations measured equally often keep the order of their medians.
-void HybridTuner::update_best(StateData& state) {
+std::vector<std::pair<double, const Config*>> HybridTuner::ranking(const StateData& state) {
   std::vector<double> medians;
   for (const auto& entry : state.measurements)
     if (std::isfinite(entry.second.median)) medians.push_back(entry.second.median);
   const double prior = robust_cost(medians);
-  state.best.reset();
-  state.best_cost = kInfinity;
-  double best_score = kInfinity;
+  // (score, first-measured order) sorts equal scores by which was measured first.
+  std::vector<std::tuple<double, size_t, const Config*>> scored;
   for (const auto& [candidate, m] : state.measurements) {
     if (!std::isfinite(m.median)) continue;  // failed: never the best
     const double n = static_cast<double>(m.costs.size());
-    const double score = (n * m.median + prior) / (n + 1.0);
-    if (!state.best || score < best_score || (score == best_score && m.order < state.best_order)) {
-      state.best = candidate;
-      state.best_cost = m.median;
-      state.best_order = m.order;
-      best_score = score;
-    }
+    scored.emplace_back((n * m.median + prior) / (n + 1.0), m.order, &candidate);
+  }
+  std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) {
+    return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
+  });
+  std::vector<std::pair<double, const Config*>> ranked;
+  for (const auto& [score, order, config] : scored) ranked.emplace_back(score, config);
+  return ranked;
+}
+
+void HybridTuner::update_best(StateData& state) {
+  state.best.reset();
+  state.best_cost = kInfinity;
+  const auto ranked = ranking(state);
+  if (!ranked.empty()) {
+    const Measurements& m = state.measurements.at(*ranked.front().second);
+    state.best = *ranked.front().second;
+    state.best_cost = m.median;
+    state.best_order = m.order;
   }
   if (state.best) nn_.set_best(state.id, state.normalised, *state.best);
 }
@@ -302,6 +315,17 @@ Config HybridTuner::best(const State& state) const {
     return prediction->config;
   }
   return space_.default_config();
+}
+
+std::vector<Config> HybridTuner::finalists(const State& state, size_t count) const {
+  std::vector<Config> out;
+  const StateData* known = find_state(schema_.normalise(state));
+  if (known == nullptr) return out;
+  for (const auto& [score, config] : ranking(*known)) {
+    if (out.size() == count) break;
+    out.push_back(*config);
+  }
+  return out;
 }
 
 std::optional<StateSummary> HybridTuner::summary(const State& state) const {

@@ -95,6 +95,10 @@ class HybridTuner {
   // Best known configuration for `state`: its best measured one (lowest median) if the state is
   // known, else the prediction, else the default. Does not change the policy's state.
   Config best(const State& state) const;
+  // The `count` best measured configurations for `state`, best first, ranked as best() ranks
+  // them (failures never): the finalists a caller re-measures side by side, since the best of
+  // many noisy samples is biased towards a lucky one. Empty for an unknown state.
+  std::vector<Config> finalists(const State& state, size_t count) const;
 
   // Changes epsilon from the next state change on, e.g. to exploit only after training.
   void set_epsilon(double epsilon);
@@ -155,6 +159,8 @@ class HybridTuner {
   void record(StateData& state, const Config& config, double cost, bool train);
   // Re-chooses state.best after a measurement (see the definition for how noise is handled).
   void update_best(StateData& state);
+  // The state's measured configurations by score, best first (see update_best for the score).
+  static std::vector<std::pair<double, const Config*>> ranking(const StateData& state);
   void add_candidate(const Config& config);
   NelderMead::Lookup lookup_for(const StateData& state) const;
   int64_t config_id(const Config& config);

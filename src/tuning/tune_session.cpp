@@ -127,6 +127,33 @@ TuneReport run_tune_session(const TuneOptions& o,
     r.compare_rounds = c.rounds();
     r.compare_within_target = c.within_target;
   };
+  InterleavedOptions race_options;
+  race_options.min_rounds = race_options.max_rounds = std::max(1, o.race_rounds);
+  race_options.estimator = RatioEstimator::kMedian;
+  // The fastest of `finalists` (the first is the tuner's best) by their median in interleaved
+  // rounds; frames and the decision go into `r`.
+  auto race = [&](const std::vector<Candidate>& finalists, const CameraDesc& camera,
+                  CameraTuneResult& r) -> Candidate {
+    std::vector<std::string> configs;
+    std::vector<Candidate> distinct;
+    for (const Candidate& c : finalists) {
+      const std::string name = c.first.to_string() + "," + c.second.to_string();
+      if (std::find(configs.begin(), configs.end(), name) != configs.end()) continue;
+      configs.push_back(name);
+      distinct.push_back(c);
+    }
+    r.race_candidates = static_cast<int>(distinct.size());
+    if (distinct.size() < 2) return distinct.front();
+    const EvalComparison c = measure_comparison(
+        configs, o.objective,
+        [&](size_t i) { return bench.run(distinct[i].first, distinct[i].second, camera); },
+        fmt::format("tune's race of finalists, camera {}", r.camera), race_options);
+    r.race_frames = static_cast<int>(distinct.size()) * (c.rounds() + 1);
+    const size_t winner = static_cast<size_t>(
+        std::find(configs.begin(), configs.end(), c.fastest()) - configs.begin());
+    r.race_changed_choice = winner != 0;
+    return distinct[winner];
+  };
   for (size_t ci = 0; ci < cameras.size(); ++ci) {
     tuner::State state = to_tuner_state(compute_indicators(scene_indicators, cameras[ci]));
     CameraTuneResult r;
@@ -159,9 +186,23 @@ TuneReport run_tune_session(const TuneOptions& o,
       }
     }
     const tuner::Config best = tuner.best(state);
-    const AccelChoice chosen = to_accel_choice(best);
-    const WorkSizes chosen_work = work_of(best);
+    Candidate chosen_candidate{to_accel_choice(best), work_of(best)};
+    if (o.finalists > 0) {
+      std::vector<Candidate> finalists{chosen_candidate};
+      for (const tuner::Config& c : tuner.finalists(state, static_cast<size_t>(o.finalists)))
+        finalists.emplace_back(to_accel_choice(c), work_of(c));
+      const bool native_finalist =
+          std::any_of(finalists.begin(), finalists.end(), [](const Candidate& c) {
+            return c.first.is_native();
+          });
+      if (o.native_in_space && !native_finalist)
+        finalists.emplace_back(native_choice, work_of(best));
+      chosen_candidate = race(finalists, cameras[ci], r);
+    }
+    const auto& [chosen, chosen_work] = chosen_candidate;
     // The baselines are measured outside the tuner: they are yardsticks, not tuning decisions.
+    // The race's rounds are not reused: the winner of a race is again biased towards its lucky
+    // rounds, so its speed is measured anew.
     compare({{default_choice, default_work}, {native_choice, default_work}, {chosen, chosen_work}},
             cameras[ci], r);
     r.config = chosen.to_string();
@@ -171,10 +212,13 @@ TuneReport run_tune_session(const TuneOptions& o,
     if (log)
       log(fmt::format(
           "camera {:>3} {:<8} default {:8.2f} ms  native {:8.2f} ms  chosen {:8.2f} ms  "
-          "speedup {:5.2f} [{:.2f}, {:.2f}]  vs native {:5.2f} [{:.2f}, {:.2f}]  {} rounds  {}",
+          "speedup {:5.2f} [{:.2f}, {:.2f}]  vs native {:5.2f} [{:.2f}, {:.2f}]  {} rounds  {}{}",
           r.camera, r.mode, r.default_ms, r.native_ms, r.chosen_ms, r.speedup(), r.speedup_low,
           r.speedup_high, r.vs_native(), r.vs_native_low, r.vs_native_high, r.compare_rounds,
-          r.config));
+          r.config,
+          r.race_frames > 0 ? fmt::format("  (race of {}{})", r.race_candidates,
+                                          r.race_changed_choice ? ", changed the choice" : "")
+                            : ""));
     report.cameras.push_back(r);
   }
   return report;

@@ -34,6 +34,12 @@ struct TuneOptions {
   // (tuning/interleaved_ratios.h): at least baseline_repeats (and 2) rounds, then until the 95 %
   // interval of every ratio between them is within ±compare_target, at most compare_max_rounds.
   int baseline_repeats = 3;
+  // Before that, the search's `finalists` best configurations (tuner::HybridTuner::finalists)
+  // and native Embree (when in the space) race in `race_rounds` interleaved rounds at the same
+  // camera, and the fastest by median is chosen: the best of 40 noisy frames is biased towards a
+  // lucky one, and a race of a few is cheap. 0 finalists: the tuner's best, unraced.
+  int finalists = 3;
+  int race_rounds = 4;
   int compare_max_rounds = 30;
   double compare_target = 0.03;
   // The scheduler frames are measured on (with work_sizes: the one the search starts from). The
@@ -60,7 +66,13 @@ struct CameraTuneResult {
   double vs_native_low = 0, vs_native_high = 0;
   int compare_rounds = 0;
   bool compare_within_target = false;  // every interval within ±compare_target before the cap
-  double accumulated_ms = 0;           // sum of the costs of all frames at this camera
+  double accumulated_ms = 0;           // sum of the costs of all search frames at this camera
+  // The race between the finalists (TuneOptions::finalists): how many distinct configurations
+  // ran, its frames (untimed first frames included), and whether it chose another
+  // configuration than the tuner's best.
+  int race_candidates = 0;
+  int race_frames = 0;
+  bool race_changed_choice = false;
   std::string config;   // chosen configuration (backend and BVH, then work sizes if tuned)
   std::string backend;  // of the chosen configuration: "tuned" or "native"
   bool converged = false;

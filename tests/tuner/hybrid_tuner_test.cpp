@@ -164,6 +164,35 @@ TEST(HybridTuner, OneLuckyFrameDoesNotMakeTheBest) {
   EXPECT_EQ(tuner.best(state), lucky);
 }
 
+// The finalists are the measured configurations in the order best() ranks them: the lucky
+// single frame behind the steady one, failures never, nothing for a state never seen.
+TEST(HybridTuner, FinalistsAreRankedLikeTheBestAndSkipFailures) {
+  const Space space = kernel_space();
+  HybridTuner tuner(space, kernel_schema(), fast_options(1.0));
+  const State state{300.0};
+  EXPECT_TRUE(tuner.finalists(state, 3).empty());
+  tuner.suggest(state);
+  auto config = [&](int block) { return space.default_config().set_int("block", block); };
+  tuner.report(config(1), 7.4);
+  for (double ms : {8.1, 8.3, 7.9, 8.4, 8.2, 8.3, 8.0}) tuner.report(config(2), ms);
+  for (int block : {4, 8, 16}) tuner.report(config(block), 10.0 + block / 8.0);
+  tuner.report_failure(config(32));
+
+  // Medians 7.4, 8.2, 10.5, 11, 12: prior 10.5, so the scores are 8.95 (one lucky frame),
+  // 8.49 (seven steady ones), 10.5, 10.75 and 11.25.
+  const std::vector<Config> top = tuner.finalists(state, 3);
+  ASSERT_EQ(top.size(), 3u);
+  EXPECT_EQ(top[0], tuner.best(state));
+  EXPECT_EQ(top[0], config(2));
+  EXPECT_EQ(top[1], config(1));
+  EXPECT_EQ(top[2], config(4));
+  const std::vector<Config> all = tuner.finalists(state, 10);
+  ASSERT_EQ(all.size(), 5u);  // the failure is not a finalist
+  EXPECT_EQ(all[3], config(8));
+  EXPECT_EQ(all[4], config(16));
+  EXPECT_TRUE(tuner.finalists(State{900.0}, 3).empty());
+}
+
 TEST(HybridTuner, ConditionalParametersAreNotSearchedWhenInactive) {
   const Space space = testing::bvh_space();
   IndicatorSchema schema;

@@ -105,15 +105,46 @@ TEST(TuneNative, AConfigurationComparedWithItselfReportsExactlyOne) {
   const tuner::testing::TempPath db_path("tune-itself.db");
   TuneOptions o = tiny_session(db_path.str());
   o.iterations = 1;
+  o.finalists = 0;  // no race: native could win it
   TuneReport report = run_tune_session(o);
   ASSERT_EQ(report.cameras.size(), 1u);
   const CameraTuneResult& c = report.cameras[0];
+  EXPECT_EQ(c.race_candidates, 0);
+  EXPECT_EQ(c.race_frames, 0);
   ASSERT_EQ(c.config, AccelChoice::tuned(BvhConfig{}).to_string());
   EXPECT_EQ(c.speedup(), 1.0);
   EXPECT_EQ(c.speedup_low, 1.0);
   EXPECT_EQ(c.speedup_high, 1.0);
   EXPECT_EQ(c.default_ms, c.chosen_ms);
   EXPECT_NE(c.native_ms, c.chosen_ms);  // native is another configuration, measured apart
+}
+
+// After a one-frame search the tuner's only measured configuration is the default, so the race
+// is the default against native Embree: two candidates, an untimed frame and race_rounds rounds
+// each, and the chosen configuration is the default unless the race says it changed the choice,
+// and then native.
+TEST(TuneNative, TheFinalistsRaceNativeAndTheWinnerIsChosen) {
+  const tuner::testing::TempPath db_path("tune-race.db");
+  TuneOptions o = tiny_session(db_path.str());
+  o.iterations = 1;
+  o.finalists = 3;
+  o.race_rounds = 2;
+  TuneReport report = run_tune_session(o);
+  ASSERT_EQ(report.cameras.size(), 1u);
+  const CameraTuneResult& c = report.cameras[0];
+  EXPECT_EQ(c.race_candidates, 2);
+  EXPECT_EQ(c.race_frames, 2 * (2 + 1));
+  EXPECT_EQ(c.config, c.race_changed_choice ? AccelChoice::native().to_string()
+                                            : AccelChoice::tuned(BvhConfig{}).to_string());
+
+  // Without native in the space there is nothing to race against.
+  TuneOptions tuned_only = o;
+  tuned_only.native_in_space = false;
+  const CameraTuneResult t = run_tune_session(tuned_only).cameras.at(0);
+  EXPECT_EQ(t.race_candidates, 1);
+  EXPECT_EQ(t.race_frames, 0);
+  EXPECT_FALSE(t.race_changed_choice);
+  EXPECT_EQ(t.backend, "tuned");
 }
 
 // Without the backend in the space, native is still the yardstick, and the samples go under the
