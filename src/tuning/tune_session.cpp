@@ -131,26 +131,33 @@ TuneReport run_tune_session(const TuneOptions& o,
   race_options.min_rounds = race_options.max_rounds = std::max(1, o.race_rounds);
   race_options.estimator = RatioEstimator::kMedian;
   // The fastest of `finalists` (the first is the tuner's best) by their median in interleaved
-  // rounds; frames and the decision go into `r`.
-  auto race = [&](const std::vector<Candidate>& finalists, const CameraDesc& camera,
-                  CameraTuneResult& r) -> Candidate {
-    std::vector<std::string> configs;
-    std::vector<Candidate> distinct;
-    for (const Candidate& c : finalists) {
-      const std::string name = c.first.to_string() + "," + c.second.to_string();
-      if (std::find(configs.begin(), configs.end(), name) != configs.end()) continue;
-      configs.push_back(name);
+  // rounds; frames and the decision go into `r`. Every timed round is reported to the tuner, as
+  // every measurement is: native's frames in the race teach the predictors where it wins, so the
+  // next camera's prediction is native and needs no race.
+  auto race = [&](const std::vector<tuner::Config>& finalists, const CameraDesc& camera,
+                  CameraTuneResult& r) -> tuner::Config {
+    std::vector<std::string> names;
+    std::vector<tuner::Config> distinct;
+    std::vector<Candidate> candidates;
+    for (const tuner::Config& c : finalists) {
+      const Candidate candidate{to_accel_choice(c), work_of(c)};
+      const std::string name = candidate.first.to_string() + "," + candidate.second.to_string();
+      if (std::find(names.begin(), names.end(), name) != names.end()) continue;
+      names.push_back(name);
       distinct.push_back(c);
+      candidates.push_back(candidate);
     }
     r.race_candidates = static_cast<int>(distinct.size());
     if (distinct.size() < 2) return distinct.front();
     const EvalComparison c = measure_comparison(
-        configs, o.objective,
-        [&](size_t i) { return bench.run(distinct[i].first, distinct[i].second, camera); },
+        names, o.objective,
+        [&](size_t i) { return bench.run(candidates[i].first, candidates[i].second, camera); },
         fmt::format("tune's race of finalists, camera {}", r.camera), race_options);
     r.race_frames = static_cast<int>(distinct.size()) * (c.rounds() + 1);
+    for (size_t i = 0; i < distinct.size(); ++i)
+      for (double ms : c.costs[i]) tuner.report(distinct[i], ms / 1000.0, {{"race", 1.0}});
     const size_t winner = static_cast<size_t>(
-        std::find(configs.begin(), configs.end(), c.fastest()) - configs.begin());
+        std::find(names.begin(), names.end(), c.fastest()) - names.begin());
     r.race_changed_choice = winner != 0;
     return distinct[winner];
   };
@@ -185,20 +192,19 @@ TuneReport run_tune_session(const TuneOptions& o,
         on_frame(progress);
       }
     }
-    const tuner::Config best = tuner.best(state);
-    Candidate chosen_candidate{to_accel_choice(best), work_of(best)};
+    tuner::Config best = tuner.best(state);
     if (o.finalists > 0) {
-      std::vector<Candidate> finalists{chosen_candidate};
+      std::vector<tuner::Config> finalists{best};
       for (const tuner::Config& c : tuner.finalists(state, static_cast<size_t>(o.finalists)))
-        finalists.emplace_back(to_accel_choice(c), work_of(c));
+        finalists.push_back(c);
       const bool native_finalist =
-          std::any_of(finalists.begin(), finalists.end(), [](const Candidate& c) {
-            return c.first.is_native();
-          });
+          std::any_of(finalists.begin(), finalists.end(),
+                      [](const tuner::Config& c) { return to_accel_choice(c).is_native(); });
       if (o.native_in_space && !native_finalist)
-        finalists.emplace_back(native_choice, work_of(best));
-      chosen_candidate = race(finalists, cameras[ci], r);
+        finalists.push_back(to_tuner_config(space, native_choice));
+      best = race(finalists, cameras[ci], r);
     }
+    const Candidate chosen_candidate{to_accel_choice(best), work_of(best)};
     const auto& [chosen, chosen_work] = chosen_candidate;
     // The baselines are measured outside the tuner: they are yardsticks, not tuning decisions.
     // The race's rounds are not reused: the winner of a race is again biased towards its lucky

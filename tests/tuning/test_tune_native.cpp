@@ -122,7 +122,7 @@ TEST(TuneNative, AConfigurationComparedWithItselfReportsExactlyOne) {
 // After a one-frame search the tuner's only measured configuration is the default, so the race
 // is the default against native Embree: two candidates, an untimed frame and race_rounds rounds
 // each, and the chosen configuration is the default unless the race says it changed the choice,
-// and then native.
+// and then native. The race's rounds are reported to the tuner like every measurement.
 TEST(TuneNative, TheFinalistsRaceNativeAndTheWinnerIsChosen) {
   const tuner::testing::TempPath db_path("tune-race.db");
   TuneOptions o = tiny_session(db_path.str());
@@ -136,6 +136,16 @@ TEST(TuneNative, TheFinalistsRaceNativeAndTheWinnerIsChosen) {
   EXPECT_EQ(c.race_frames, 2 * (2 + 1));
   EXPECT_EQ(c.config, c.race_changed_choice ? AccelChoice::native().to_string()
                                             : AccelChoice::tuned(BvhConfig{}).to_string());
+  // Every timed round of the race is a sample of the database, native's among them.
+  {
+    tuner::TuningDb db(db_path.str());
+    auto sig = db.find_signature(tuning_key(o), tuner::hardware_signature());
+    ASSERT_TRUE(sig.has_value());
+    int native = 0;
+    for (const auto& s : db.samples(*sig))
+      native += s.config.find("backend=native") != std::string::npos;
+    EXPECT_EQ(native, o.race_rounds);
+  }
 
   // Without native in the space there is nothing to race against.
   TuneOptions tuned_only = o;
