@@ -65,8 +65,10 @@ nlohmann::json tune_report_json(const TuneOptions& o, const std::string& objecti
           {"compare_target", o.compare_target},
           {"cameras", cams},
           {"failed_builds", report.failed_builds},
-          {"race", {{"changed_choice", s.race_changed}, {"frames", s.race_frames},
-                    {"search_frames", s.search_frames}}},
+          {"race",
+           {{"changed_choice", s.race_changed},
+            {"frames", s.race_frames},
+            {"search_frames", s.search_frames}}},
           {"speedup", {{"median", s.speedup_median}, {"geomean", s.speedup_geomean}}},
           {"vs_native", {{"median", s.vs_native_median}, {"geomean", s.vs_native_geomean}}}};
 }

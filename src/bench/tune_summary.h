@@ -12,12 +12,12 @@ namespace tuneray {
 struct TuneSummary {
   double speedup_median = 0, speedup_geomean = 0;      // over the default configuration
   double vs_native_median = 0, vs_native_geomean = 0;  // over native Embree
-  int searched = 0;  // cameras where the tuner searched rather than predicted
-  int tuned = 0;     // cameras where the tuned BVH (not native) was chosen
-  int capped = 0;    // cameras whose comparison reached the round cap before the target
-  int race_changed = 0;     // cameras where the finalists' race overruled the tuner's best
-  int race_frames = 0;      // frames the races took, over all cameras
-  int search_frames = 0;    // frames the searches took, over all cameras
+  int searched = 0;       // cameras where the tuner searched rather than predicted
+  int tuned = 0;          // cameras where the tuned BVH (not native) was chosen
+  int capped = 0;         // cameras whose comparison reached the round cap before the target
+  int race_changed = 0;   // cameras where the finalists' race overruled the tuner's best
+  int race_frames = 0;    // frames the races took, over all cameras
+  int search_frames = 0;  // frames the searches took, over all cameras
 };
 TuneSummary summarize_tune(const TuneReport& report);
 

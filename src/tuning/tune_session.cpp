@@ -154,10 +154,12 @@ TuneReport run_tune_session(const TuneOptions& o,
         [&](size_t i) { return bench.run(candidates[i].first, candidates[i].second, camera); },
         fmt::format("tune's race of finalists, camera {}", r.camera), race_options);
     r.race_frames = static_cast<int>(distinct.size()) * (c.rounds() + 1);
-    for (size_t i = 0; i < distinct.size(); ++i)
-      for (double ms : c.costs[i]) tuner.report(distinct[i], ms / 1000.0, {{"race", 1.0}});
-    const size_t winner = static_cast<size_t>(
-        std::find(names.begin(), names.end(), c.fastest()) - names.begin());
+    for (size_t i = 0; i < c.configs.size(); ++i) {
+      const auto at = std::find(names.begin(), names.end(), c.configs[i]) - names.begin();
+      for (double ms : c.costs[i]) tuner.report(distinct[at], ms / 1000.0, {{"race", 1.0}});
+    }
+    const size_t winner =
+        static_cast<size_t>(std::find(names.begin(), names.end(), c.fastest()) - names.begin());
     r.race_changed_choice = winner != 0;
     return distinct[winner];
   };
