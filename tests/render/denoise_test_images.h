@@ -2,6 +2,7 @@
 // sequence.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -42,6 +43,15 @@ inline Image with_noise(const Image& clean, float sigma, uint32_t seed) {
       out.at(x, y) += Color(g[0], g[1], g[2]);
     }
   return out;
+}
+
+// Whether pixel (x, y) is within one pixel of where the guides saw a light: the pixels the
+// filter leaves exactly as they are.
+inline bool near_light(const DenoiseFeatures& f, int x, int y) {
+  for (int yy = std::max(0, y - 1); yy <= std::min(f.height - 1, y + 1); ++yy)
+    for (int xx = std::max(0, x - 1); xx <= std::min(f.width - 1, x + 1); ++xx)
+      if (f.emitter[static_cast<size_t>(yy) * f.width + xx]) return true;
+  return false;
 }
 
 // The mean of two halves of equal sample counts: the full film's estimate.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "accel/embree_native.h"
+#include "denoise_test_images.h"
 #include "image/metrics.h"
 #include "render/denoiser.h"
 #include "render/denoiser_features.h"
@@ -22,34 +23,12 @@ constexpr int kW = 48, kH = 32;
 
 // Noise-free features: one albedo and one normal everywhere unless a test changes them.
 DenoiseFeatures flat_features(Color albedo = Color(0.5f)) {
-  DenoiseFeatures f;
-  f.width = kW;
-  f.height = kH;
-  f.albedo.assign(static_cast<size_t>(kW) * kH, albedo);
-  f.normal.assign(static_cast<size_t>(kW) * kH, Vec3f(0, 0, 1));
-  return f;
+  return testing::flat_features(kW, kH, albedo);
 }
 
-NoisyImage known_variance(const Image& color, float variance) {
-  const size_t n = static_cast<size_t>(color.width()) * color.height();
-  return {color, std::vector<float>(n, variance), std::vector<uint8_t>(n, 1)};
-}
-
-// Gaussian noise of standard deviation sigma on every channel (Box-Muller on mt19937, whose
-// sequence the standard fixes, so the test sees the same numbers everywhere).
-Image with_noise(const Image& clean, float sigma, uint32_t seed) {
-  std::mt19937 rng(seed);
-  auto uniform = [&rng] { return (static_cast<float>(rng()) + 0.5f) * 0x1p-32f; };
-  Image out = clean;
-  for (int y = 0; y < clean.height(); ++y)
-    for (int x = 0; x < clean.width(); ++x) {
-      float g[3];
-      for (float& v : g)
-        v = sigma * std::sqrt(-2.0f * std::log(uniform())) * std::cos(6.2831853f * uniform());
-      out.at(x, y) += Color(g[0], g[1], g[2]);
-    }
-  return out;
-}
+using testing::known_variance;
+using testing::near_light;
+using testing::with_noise;
 
 TEST(Denoiser, ConstantImageWithNoiseFreeFeaturesStaysExactlyConstant) {
   const Color c(0.3f, 0.55f, 0.7f);
@@ -182,11 +161,7 @@ TEST_F(CornellDenoise, LowSppDenoisedIsCloserToTheConvergedImageAndTheLightsRimS
   int rim = 0;
   for (int y = 0; y < raw.height(); ++y)
     for (int x = 0; x < raw.width(); ++x) {
-      bool near_light = false;
-      for (int yy = std::max(0, y - 1); yy <= std::min(raw.height() - 1, y + 1); ++yy)
-        for (int xx = std::max(0, x - 1); xx <= std::min(raw.width() - 1, x + 1); ++xx)
-          near_light = near_light || f.emitter[static_cast<size_t>(yy) * raw.width() + xx];
-      if (near_light) {
+      if (near_light(f, x, y)) {
         ++rim;
         ASSERT_EQ(denoised.at(x, y).x, raw.at(x, y).x) << x << "," << y;
         continue;

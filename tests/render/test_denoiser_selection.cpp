@@ -212,11 +212,7 @@ TEST(DenoiserSelection, OnTheCornellBoxTheChoiceBeatsTheFixedFilterAndKeepsTheLi
     double fixed_error = 0, chosen_error = 0;
     for (int y = 0; y < raw.height(); ++y)
       for (int x = 0; x < raw.width(); ++x) {
-        bool near_light = false;
-        for (int yy = std::max(0, y - 1); yy <= std::min(raw.height() - 1, y + 1); ++yy)
-          for (int xx = std::max(0, x - 1); xx <= std::min(raw.width() - 1, x + 1); ++xx)
-            near_light = near_light || f.emitter[static_cast<size_t>(yy) * raw.width() + xx];
-        if (near_light) {
+        if (testing::near_light(f, x, y)) {
           ASSERT_EQ(chosen.at(x, y).x, raw.at(x, y).x) << x << "," << y;
           continue;
         }
