@@ -67,13 +67,13 @@ class Film {
   void add(int x, int y, Color radiance_sum, uint32_t count, const SquareSum& squares = {}) {
     const size_t i = static_cast<size_t>(y) * width() + x;
     const int half = samples_[i] & 1;
-    add_full(x, y, radiance_sum, count, squares);
+    add_full(i, x, y, radiance_sum, count, squares);
     half_sum_[half].at(x, y) += radiance_sum;
     half_samples_[half][i] += count;
   }
   void add(int x, int y, const PixelSamples& s) {
-    add_full(x, y, s.sum, s.count, s.squares);
     const size_t i = static_cast<size_t>(y) * width() + x;
+    add_full(i, x, y, s.sum, s.count, s.squares);
     for (int h = 0; h < 2; ++h) {
       half_sum_[h].at(x, y) += s.half_sum[h];
       half_samples_[h][i] += s.half_count[h];
@@ -105,9 +105,10 @@ class Film {
   void clear();
 
  private:
-  void add_full(int x, int y, Color radiance_sum, uint32_t count, const SquareSum& squares) {
+  // The full film's part of an add; `i` is pixel (x, y)'s index.
+  void add_full(size_t i, int x, int y, Color radiance_sum, uint32_t count,
+                const SquareSum& squares) {
     sum_.at(x, y) += radiance_sum;
-    size_t i = static_cast<size_t>(y) * width() + x;
     samples_[i] += count;
     square_sum_[i].r += squares.r;
     square_sum_[i].g += squares.g;

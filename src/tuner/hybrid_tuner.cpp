@@ -233,37 +233,36 @@ int64_t HybridTuner::config_id(const Config& config) {
 // (n median + prior) / (n + 1) with prior = the median of the configurations' medians: a
 // configuration must beat the others by more than the noise of one frame, or be measured again,
 // to become the best. Configurations measured equally often keep the order of their medians.
-std::vector<std::pair<double, const Config*>> HybridTuner::ranking(const StateData& state) {
+std::vector<HybridTuner::Scored> HybridTuner::scores(const StateData& state) {
   std::vector<double> medians;
   for (const auto& entry : state.measurements)
     if (std::isfinite(entry.second.median)) medians.push_back(entry.second.median);
   const double prior = robust_cost(medians);
-  // (score, first-measured order) sorts equal scores by which was measured first.
-  std::vector<std::tuple<double, size_t, const Config*>> scored;
+  std::vector<Scored> scored;
   for (const auto& [candidate, m] : state.measurements) {
     if (!std::isfinite(m.median)) continue;  // failed: never the best
     const double n = static_cast<double>(m.costs.size());
-    scored.emplace_back((n * m.median + prior) / (n + 1.0), m.order, &candidate);
+    scored.push_back({(n * m.median + prior) / (n + 1.0), m.order, &candidate, m.median});
   }
-  std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) {
-    return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
-  });
-  std::vector<std::pair<double, const Config*>> ranked;
-  for (const auto& [score, order, config] : scored) ranked.emplace_back(score, config);
-  return ranked;
+  return scored;
+}
+
+bool HybridTuner::Scored::operator<(const Scored& other) const {
+  // Equal scores: the configuration measured first.
+  return std::tie(score, order) < std::tie(other.score, other.order);
 }
 
 void HybridTuner::update_best(StateData& state) {
-  state.best.reset();
-  state.best_cost = kInfinity;
-  const auto ranked = ranking(state);
-  if (!ranked.empty()) {
-    const Measurements& m = state.measurements.at(*ranked.front().second);
-    state.best = *ranked.front().second;
-    state.best_cost = m.median;
-    state.best_order = m.order;
+  const std::vector<Scored> scored = scores(state);
+  const auto best = std::min_element(scored.begin(), scored.end());
+  if (best == scored.end()) {
+    state.best.reset();
+    state.best_cost = kInfinity;
+    return;
   }
-  if (state.best) nn_.set_best(state.id, state.normalised, *state.best);
+  state.best = *best->config;
+  state.best_cost = best->median;
+  nn_.set_best(state.id, state.normalised, *state.best);
 }
 
 void HybridTuner::record(StateData& state, const Config& config, double cost, bool train) {
@@ -321,10 +320,10 @@ std::vector<Config> HybridTuner::finalists(const State& state, size_t count) con
   std::vector<Config> out;
   const StateData* known = find_state(schema_.normalise(state));
   if (known == nullptr) return out;
-  for (const auto& [score, config] : ranking(*known)) {
-    if (out.size() == count) break;
-    out.push_back(*config);
-  }
+  std::vector<Scored> scored = scores(*known);
+  const auto end = scored.begin() + static_cast<std::ptrdiff_t>(std::min(count, scored.size()));
+  std::partial_sort(scored.begin(), end, scored.end());
+  for (auto it = scored.begin(); it != end; ++it) out.push_back(*it->config);
   return out;
 }
 

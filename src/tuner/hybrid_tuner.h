@@ -137,7 +137,6 @@ class HybridTuner {
     std::unordered_map<Config, Measurements> measurements;
     std::optional<Config> best;
     double best_cost = 0.0;
-    size_t best_order = 0;
     std::optional<NelderMead> search;
     bool searched = false;
     bool predicted = false;
@@ -157,10 +156,19 @@ class HybridTuner {
   void finish_search(StateData& state);
   // Adds a measurement to the in-memory tables and, if `train`, to θ.
   void record(StateData& state, const Config& config, double cost, bool train);
-  // Re-chooses state.best after a measurement (see the definition for how noise is handled).
+  // Re-chooses state.best after a measurement (see scores() for how noise is handled).
   void update_best(StateData& state);
-  // The state's measured configurations by score, best first (see update_best for the score).
-  static std::vector<std::pair<double, const Config*>> ranking(const StateData& state);
+  // A measured configuration's score (see scores() for why it is not the median); the lower
+  // ranks first.
+  struct Scored {
+    double score;
+    size_t order;  // first-measured order
+    const Config* config;
+    double median;
+    bool operator<(const Scored& other) const;
+  };
+  // Every measured configuration of the state that did not fail, with its score, unordered.
+  static std::vector<Scored> scores(const StateData& state);
   void add_candidate(const Config& config);
   NelderMead::Lookup lookup_for(const StateData& state) const;
   int64_t config_id(const Config& config);

@@ -50,9 +50,13 @@ RatioInterval EvalComparison::ratio(const std::string& a, const std::string& b) 
 
 const std::string& EvalComparison::fastest() const {
   size_t best = 0;
+  double best_ms = cost_ms(configs.at(0));
   for (size_t i = 1; i < configs.size(); ++i)
-    if (cost_ms(configs[i]) < cost_ms(configs[best])) best = i;
-  return configs.at(best);
+    if (const double ms = cost_ms(configs[i]); ms < best_ms) {
+      best = i;
+      best_ms = ms;
+    }
+  return configs[best];
 }
 
 std::vector<std::string> comparison_configs(const std::string& converged,

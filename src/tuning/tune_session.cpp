@@ -100,21 +100,31 @@ TuneReport run_tune_session(const TuneOptions& o,
   compare_options.max_rounds = std::max(compare_options.min_rounds, o.compare_max_rounds);
   compare_options.target_half_width = o.compare_target;
   compare_options.every_pair = true;
+  auto name_of = [](const Candidate& c) {
+    return c.first.to_string() + "," + c.second.to_string();
+  };
+  // measure_comparison over `distinct` candidates (their names in `names`) at `camera`.
+  auto measure = [&](const std::vector<std::string>& names, const std::vector<Candidate>& distinct,
+                     const CameraDesc& camera, const std::string& what,
+                     const InterleavedOptions& options) {
+    return measure_comparison(
+        names, o.objective,
+        [&](size_t i) { return bench.run(distinct[i].first, distinct[i].second, camera); }, what,
+        options);
+  };
   // Fills the yardsticks of `r` from candidates {default, native, chosen}.
   auto compare = [&](const std::vector<Candidate>& candidates, const CameraDesc& camera,
                      CameraTuneResult& r) {
     std::vector<std::string> names, configs;
     std::vector<Candidate> measured;
     for (const Candidate& c : candidates) {
-      names.push_back(c.first.to_string() + "," + c.second.to_string());
+      names.push_back(name_of(c));
       if (std::find(configs.begin(), configs.end(), names.back()) != configs.end()) continue;
       configs.push_back(names.back());
       measured.push_back(c);
     }
-    const EvalComparison c = measure_comparison(
-        configs, o.objective,
-        [&](size_t i) { return bench.run(measured[i].first, measured[i].second, camera); },
-        fmt::format("tune, camera {}", r.camera), compare_options);
+    const EvalComparison c = measure(configs, measured, camera,
+                                     fmt::format("tune, camera {}", r.camera), compare_options);
     r.default_ms = c.cost_ms(names[0]);
     r.native_ms = c.cost_ms(names[1]);
     r.chosen_ms = c.cost_ms(names[2]);
@@ -129,7 +139,6 @@ TuneReport run_tune_session(const TuneOptions& o,
   };
   InterleavedOptions race_options;
   race_options.min_rounds = race_options.max_rounds = std::max(1, o.race_rounds);
-  race_options.estimator = RatioEstimator::kMedian;
   // The fastest of `finalists` (the first is the tuner's best) by their median in interleaved
   // rounds; frames and the decision go into `r`. Every timed round is reported to the tuner, as
   // every measurement is: native's frames in the race teach the predictors where it wins, so the
@@ -141,7 +150,7 @@ TuneReport run_tune_session(const TuneOptions& o,
     std::vector<Candidate> candidates;
     for (const tuner::Config& c : finalists) {
       const Candidate candidate{to_accel_choice(c), work_of(c)};
-      const std::string name = candidate.first.to_string() + "," + candidate.second.to_string();
+      const std::string name = name_of(candidate);
       if (std::find(names.begin(), names.end(), name) != names.end()) continue;
       names.push_back(name);
       distinct.push_back(c);
@@ -149,10 +158,9 @@ TuneReport run_tune_session(const TuneOptions& o,
     }
     r.race_candidates = static_cast<int>(distinct.size());
     if (distinct.size() < 2) return distinct.front();
-    const EvalComparison c = measure_comparison(
-        names, o.objective,
-        [&](size_t i) { return bench.run(candidates[i].first, candidates[i].second, camera); },
-        fmt::format("tune's race of finalists, camera {}", r.camera), race_options);
+    const EvalComparison c =
+        measure(names, candidates, camera,
+                fmt::format("tune's race of finalists, camera {}", r.camera), race_options);
     r.race_frames = static_cast<int>(distinct.size()) * (c.rounds() + 1);
     for (size_t i = 0; i < c.configs.size(); ++i) {
       const auto at = std::find(names.begin(), names.end(), c.configs[i]) - names.begin();
