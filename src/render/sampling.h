@@ -24,14 +24,19 @@ inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
 Vec2f sample_concentric_disk(Vec2f u);
 
 // sin and cos of x in [-pi/4, pi/4] by their Taylor series to x^9 and x^10: the first term left
-// out is below 2e-9 there, under float rounding.
+// out is below 2e-9 there, under float rounding. The series' divisors are written as reciprocals:
+// without -ffast-math the compiler keeps x2 / 6 a division, and those ten divisions made the
+// concentric disk mapping 4% of a Lambertian render.
 inline float sin_quarter(float x) {
   float x2 = x * x;
-  return x * (1 - x2 / 6 * (1 - x2 / 20 * (1 - x2 / 42 * (1 - x2 / 72))));
+  return x * (1 - x2 * (1.0f / 6) *
+                      (1 - x2 * (1.0f / 20) * (1 - x2 * (1.0f / 42) * (1 - x2 * (1.0f / 72)))));
 }
 inline float cos_quarter(float x) {
   float x2 = x * x;
-  return 1 - x2 / 2 * (1 - x2 / 12 * (1 - x2 / 30 * (1 - x2 / 56 * (1 - x2 / 90))));
+  return 1 - x2 * 0.5f *
+                 (1 - x2 * (1.0f / 12) *
+                          (1 - x2 * (1.0f / 30) * (1 - x2 * (1.0f / 56) * (1 - x2 * (1.0f / 90)))));
 }
 
 // Uniform barycentrics (b1, b2) on a triangle; the point is (1-b1-b2) p0 + b1 p1 + b2 p2.
