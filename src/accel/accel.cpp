@@ -2,7 +2,7 @@
 
 namespace tuneray {
 
-void Accel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
+void Accel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits, RayCoherence) const {
   for (size_t i = 0; i < rays.size(); ++i) {
     hits[i] = Hit{};
     intersect(rays[i], hits[i]);

@@ -42,6 +42,10 @@ class BuildError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// How alike neighbouring rays of a batch are. Coherent: they leave from about one point in
+// about one direction, as camera rays in pixel order do, so they visit the same nodes.
+enum class RayCoherence { kIncoherent, kCoherent };
+
 class Accel {
  public:
   virtual ~Accel() = default;
@@ -59,8 +63,10 @@ class Accel {
   virtual bool occluded(const Ray& ray) const = 0;
 
   // Batches, for the wavefront mode. The default loops over the single-ray calls; backends
-  // override with packet/stream traversal. occluded[i] is 1 when ray i is blocked.
-  virtual void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const;
+  // override with packet/stream traversal. occluded[i] is 1 when ray i is blocked. A backend may
+  // trace a coherent batch as packets; the hits are those of the single-ray calls either way.
+  virtual void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
+                               RayCoherence coherence = RayCoherence::kIncoherent) const;
   virtual void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
 };
 

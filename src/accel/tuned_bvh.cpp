@@ -83,7 +83,8 @@ bool TunedBvhAccel::occluded(const Ray& ray) const {
   return kernels_.occluded(context_, ray);
 }
 
-void TunedBvhAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
+void TunedBvhAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
+                                    RayCoherence) const {
   for (size_t i = 0; i < rays.size(); ++i) {
     hits[i] = Hit{};
     intersect(rays[i], hits[i]);

@@ -45,7 +45,8 @@ class TunedBvhAccel final : public Accel {
 
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
-  void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const override;
+  void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
+                       RayCoherence coherence = RayCoherence::kIncoherent) const override;
   void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> occluded) const override;
 
  private:

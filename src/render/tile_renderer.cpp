@@ -214,6 +214,8 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
             }
           }
 
+          // The first wave is the camera rays in pixel order; after a bounce they scatter.
+          RayCoherence coherence = RayCoherence::kCoherent;
           while (!b.queue.empty()) {
             // Extend: one batch of closest-hit rays.
             size_t n = b.queue.size();
@@ -221,7 +223,8 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
             b.hits.resize(n);
             for (size_t i = 0; i < n; ++i) b.rays[i] = b.states[b.queue[i]].ray;
             uint64_t t0 = profile ? now_ns() : 0;
-            accel.intersect_batch(b.rays, b.hits);
+            accel.intersect_batch(b.rays, b.hits, coherence);
+            coherence = RayCoherence::kIncoherent;
             if (profile) local.intersect_ns += now_ns() - t0;
             local.rays += n;
 
