@@ -28,9 +28,9 @@ float BlueNoiseSampler::next1() {
 }
 
 std::array<float, 4> BlueNoiseSampler::next4() {
-  // Beyond the tables (every bounce after the second, every sample from the 257th) the numbers
-  // are the fallback's: drawn from it directly, which is what four next1() calls would return
-  // after four virtual calls and tests.
+  // Beyond the tables (from the second bounce's BSDF sample on, and every sample from the 257th)
+  // the numbers are the fallback's: drawn from it directly, they are what four next1() calls
+  // would return after four virtual calls and tests.
   if (!in_table_ || dim_ >= kDims) return fallback_.next4();
   if (dim_ % 4 != 0 || dim_ + 4 > kDims) return Sampler::next4();
   const int q = dim_ / 4;
