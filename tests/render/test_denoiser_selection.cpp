@@ -16,6 +16,7 @@
 #include "render/film.h"
 #include "render/sampler.h"
 #include "render/tile_renderer.h"
+#include "render_helpers.h"
 #include "scene/builtins.h"
 
 namespace tuneray {
@@ -192,11 +193,7 @@ TEST(DenoiserSelection, OnTheCornellBoxTheChoiceBeatsTheFixedFilterAndKeepsTheLi
   s.height = 48;
   s.quality = QualityOptions::reference();
   auto render = [&](uint32_t spp, uint64_t seed) {
-    PcgSampler sampler(seed);
-    TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
-    Film film(s.width, s.height);
-    renderer.render_pass(film, 0, spp);
-    return film;
+    return testing::render_film(scene, s, PcgSampler(seed), spp);
   };
   const Image converged = render(1024, 99).resolve();
   PcgSampler sampler(1);
