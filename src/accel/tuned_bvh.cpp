@@ -30,6 +30,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
     tree_.reset();
     context_ = {};
     kernels_ = {};
+    coherent_batch_ = nullptr;
     tree_stats_ = {};
     throw;
   }
@@ -39,6 +40,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   tree_ = std::move(next);
   context_ = {tree_->root(), geometry.positions, geometry.triangles};
   kernels_ = bvh::select_kernels(tree_->shape());
+  coherent_batch_ = bvh::select_coherent_batch_kernel(tree_->shape());
 
   tree_stats_ = bvh::measure_tree(*tree_, config_.trav_cost, config_.int_cost);
   const bvh::TreeStats& ts = tree_stats_;
@@ -70,6 +72,7 @@ void TunedBvhAccel::swap_tree(TunedBvhAccel& other) noexcept {
   swap(tree_, other.tree_);
   swap(context_, other.context_);
   swap(kernels_, other.kernels_);
+  swap(coherent_batch_, other.coherent_batch_);
   swap(tree_stats_, other.tree_stats_);
 }
 
@@ -84,7 +87,11 @@ bool TunedBvhAccel::occluded(const Ray& ray) const {
 }
 
 void TunedBvhAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
-                                    RayCoherence) const {
+                                    RayCoherence coherence) const {
+  if (coherence == RayCoherence::kCoherent && coherent_batch_) {
+    coherent_batch_(context_, kernels_, rays.data(), rays.size(), hits.data());
+    return;
+  }
   for (size_t i = 0; i < rays.size(); ++i) {
     hits[i] = Hit{};
     intersect(rays[i], hits[i]);

@@ -8,6 +8,7 @@
 #include "accel/accel.h"
 #include "accel/bvh_build.h"
 #include "accel/bvh_config.h"
+#include "accel/bvh_packet.h"
 #include "accel/bvh_traverse.h"
 #include "accel/bvh_tree.h"
 #include "accel/bvh_walk.h"
@@ -57,6 +58,7 @@ class TunedBvhAccel final : public Accel {
   std::unique_ptr<bvh::Tree> tree_;
   bvh::TraversalContext context_;
   bvh::Kernels kernels_;
+  bvh::IntersectBatchKernel coherent_batch_ = nullptr;  // packets; none for some layouts
   bvh::TreeStats tree_stats_;
 };
 

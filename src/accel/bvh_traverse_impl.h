@@ -1,0 +1,399 @@
+// The single-ray traversal of the tuned BVH as inline templates, shared by the single-ray
+// kernels (bvh_traverse.cpp) and the packet kernels (bvh_packet.cpp), which hand rays over to it
+// when a packet thins out and use its leaf tests so both give the same hits bit for bit.
+// Internal to src/accel.
+#pragma once
+
+#include <immintrin.h>
+
+#include <cstring>
+#include <type_traits>
+#include <utility>
+
+#include "accel/bvh_layout.h"
+#include "accel/bvh_traverse.h"
+#include "accel/bvh_triangle.h"
+#include "scene/scene.h"
+
+namespace tuneray::bvh::detail {
+
+// Ize 2013: padding the far distance by 1 + 2 gamma(3) makes the float slab test
+// conservative (no ray slips between two adjacent boxes).
+constexpr float kRobustFarScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
+constexpr int kStackSize = 64 * 8;
+
+// Relative slack of the SIMD triangle pre-test of closest-hit queries (see intersect_fast_leaf):
+// wide enough for the rounding of t * |det| against tfar * |det|.
+constexpr float kTieSlack = 1.0f + 0x1p-20f;
+
+// Whether a triangle hit at `t` replaces `best` (found so far, distance `tfar`): nearer, or as
+// near and of a lower triangle index, so that equal distances give the same hit whatever the
+// order of the visit. A first hit must lie strictly before the ray's end.
+inline bool is_nearer_hit(float t, uint32_t prim, float tfar, const Hit& best) {
+  return t < tfar || (t == tfar && best.prim != kInvalidId && prim < best.prim);
+}
+
+struct StackEntry {
+  NodeRef ref;
+  float dist;
+};
+
+// ---- box tests: bit i of the result = child i entered within [tnear, tfar]; dist[i] = entry.
+
+template <bool kRobust>
+inline int box_test8(const __m256 (&nears)[3], const __m256 (&fars)[3], const TraversalRay& r,
+                     float tfar, float* dist) {
+  __m256 tn[3], tf[3];
+  for (int a = 0; a < 3; ++a) {
+    const __m256 near = nears[a];
+    const __m256 far = fars[a];
+    const __m256 inv = _mm256_set1_ps(r.inv[a]);
+    if constexpr (kRobust) {
+      const __m256 org = _mm256_set1_ps(r.org[a]);
+      tn[a] = _mm256_mul_ps(_mm256_sub_ps(near, org), inv);
+      tf[a] = _mm256_mul_ps(_mm256_sub_ps(far, org), inv);
+    } else {
+      const __m256 oi = _mm256_set1_ps(r.org_inv[a]);
+      tn[a] = _mm256_fmsub_ps(near, inv, oi);
+      tf[a] = _mm256_fmsub_ps(far, inv, oi);
+    }
+  }
+  const __m256 tmin =
+      _mm256_max_ps(_mm256_max_ps(tn[0], tn[1]), _mm256_max_ps(tn[2], _mm256_set1_ps(r.tnear)));
+  __m256 tmax = _mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), tf[2]);
+  if constexpr (kRobust) tmax = _mm256_mul_ps(tmax, _mm256_set1_ps(kRobustFarScale));
+  tmax = _mm256_min_ps(tmax, _mm256_set1_ps(tfar));
+  _mm256_storeu_ps(dist, tmin);
+  return _mm256_movemask_ps(_mm256_cmp_ps(tmin, tmax, _CMP_LE_OQ));
+}
+
+template <bool kRobust>
+inline int box_test4(const __m128 (&nears)[3], const __m128 (&fars)[3], const TraversalRay& r,
+                     float tfar, float* dist) {
+  __m128 tn[3], tf[3];
+  for (int a = 0; a < 3; ++a) {
+    const __m128 near = nears[a];
+    const __m128 far = fars[a];
+    const __m128 inv = _mm_set1_ps(r.inv[a]);
+    if constexpr (kRobust) {
+      const __m128 org = _mm_set1_ps(r.org[a]);
+      tn[a] = _mm_mul_ps(_mm_sub_ps(near, org), inv);
+      tf[a] = _mm_mul_ps(_mm_sub_ps(far, org), inv);
+    } else {
+      const __m128 oi = _mm_set1_ps(r.org_inv[a]);
+      tn[a] = _mm_fmsub_ps(near, inv, oi);
+      tf[a] = _mm_fmsub_ps(far, inv, oi);
+    }
+  }
+  const __m128 tmin = _mm_max_ps(_mm_max_ps(tn[0], tn[1]), _mm_max_ps(tn[2], _mm_set1_ps(r.tnear)));
+  __m128 tmax = _mm_min_ps(_mm_min_ps(tf[0], tf[1]), tf[2]);
+  if constexpr (kRobust) tmax = _mm_mul_ps(tmax, _mm_set1_ps(kRobustFarScale));
+  tmax = _mm_min_ps(tmax, _mm_set1_ps(tfar));
+  _mm_storeu_ps(dist, tmin);
+  return _mm_movemask_ps(_mm_cmple_ps(tmin, tmax));
+}
+
+template <bool kRobust>
+inline int box_test2(const float (&rows)[6][2], const TraversalRay& r, float tfar, float* dist) {
+  int mask = 0;
+  for (int i = 0; i < 2; ++i) {
+    float tmin = r.tnear, tmax = kInf;
+    for (int a = 0; a < 3; ++a) {
+      const float near = rows[r.near_row[a]][i];
+      const float far = rows[(r.near_row[a] + 3) % 6][i];
+      float tn, tf;
+      if constexpr (kRobust) {
+        tn = (near - r.org[a]) * r.inv[a];
+        tf = (far - r.org[a]) * r.inv[a];
+      } else {
+        tn = std::fma(near, r.inv[a], -r.org_inv[a]);
+        tf = std::fma(far, r.inv[a], -r.org_inv[a]);
+      }
+      tmin = tn > tmin ? tn : tmin;
+      tmax = tf < tmax ? tf : tmax;
+    }
+    if constexpr (kRobust) tmax *= kRobustFarScale;
+    tmax = tmax < tfar ? tmax : tfar;
+    dist[i] = tmin;
+    if (tmin <= tmax) mask |= 1 << i;
+  }
+  return mask;
+}
+
+template <int N, bool kCompact, bool kRobust>
+struct NodeTest;
+
+template <bool kCompact, bool kRobust>
+struct NodeTest<8, kCompact, kRobust> {
+  using Node = std::conditional_t<kCompact, CompactNode<8>, FastNode<8>>;
+  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
+    // Near and far planes are loaded directly by the ray's octant: no dynamically indexed
+    // register array (which would be spilled to the stack on every node).
+    __m256 nears[3], fars[3];
+    for (int a = 0; a < 3; ++a) {
+      const int nr = r.near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
+      if constexpr (kCompact) {
+        const __m256 scale = _mm256_set1_ps(n.scale[a]), origin = _mm256_set1_ps(n.origin[a]);
+        auto decode = [&](int row) {
+          const __m128i bytes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(n.q[row]));
+          return _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(bytes)), scale, origin);
+        };
+        nears[a] = decode(nr);
+        fars[a] = decode(fr);
+      } else {
+        nears[a] = _mm256_load_ps(n.bounds[nr]);
+        fars[a] = _mm256_load_ps(n.bounds[fr]);
+      }
+    }
+    return box_test8<kRobust>(nears, fars, r, tfar, dist);
+  }
+};
+
+template <bool kCompact, bool kRobust>
+struct NodeTest<4, kCompact, kRobust> {
+  using Node = std::conditional_t<kCompact, CompactNode<4>, FastNode<4>>;
+  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
+    __m128 nears[3], fars[3];
+    for (int a = 0; a < 3; ++a) {
+      const int nr = r.near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
+      if constexpr (kCompact) {
+        const __m128 scale = _mm_set1_ps(n.scale[a]), origin = _mm_set1_ps(n.origin[a]);
+        auto decode = [&](int row) {
+          int32_t packed;
+          std::memcpy(&packed, n.q[row], 4);
+          const __m128 q = _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(packed)));
+          return _mm_fmadd_ps(q, scale, origin);
+        };
+        nears[a] = decode(nr);
+        fars[a] = decode(fr);
+      } else {
+        nears[a] = _mm_load_ps(n.bounds[nr]);
+        fars[a] = _mm_load_ps(n.bounds[fr]);
+      }
+    }
+    return box_test4<kRobust>(nears, fars, r, tfar, dist);
+  }
+};
+
+template <bool kCompact, bool kRobust>
+struct NodeTest<2, kCompact, kRobust> {
+  using Node = std::conditional_t<kCompact, CompactNode<2>, FastNode<2>>;
+  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
+    if constexpr (kCompact) {
+      float rows[6][2];
+      for (int k = 0; k < 6; ++k) {
+        for (int i = 0; i < 2; ++i)
+          rows[k][i] = dequantize(n.origin[k % 3], n.scale[k % 3], n.q[k][i]);
+      }
+      return box_test2<kRobust>(rows, r, tfar, dist);
+    } else {
+      return box_test2<kRobust>(n.bounds, r, tfar, dist);
+    }
+  }
+};
+
+// ---- leaves: returns true on a hit (any-hit: stop; closest: tfar and hit updated).
+
+template <bool kRobust, bool kAnyHit>
+inline bool intersect_compact_leaf(const LeafHeader* leaf, const TraversalContext& ctx,
+                                   const TraversalRay& r, float& tfar, Hit* hit) {
+  bool found = false;
+  const uint32_t* ids = leaf_payload<uint32_t>(leaf);
+  for (uint32_t i = 0; i < leaf->prim_count; ++i) {
+    const Triangle& tri = ctx.triangles[ids[i]];
+    const Vec3f& a = ctx.positions[tri.v[0]];
+    const Vec3f& b = ctx.positions[tri.v[1]];
+    const Vec3f& c = ctx.positions[tri.v[2]];
+    TriangleHit th;
+    bool ok =
+        kRobust ? intersect_watertight(a, b, c, r, tfar, th) : intersect_mt(a, b, c, r, tfar, th);
+    if (!ok) continue;
+    if constexpr (kAnyHit) return true;
+    found = true;
+    tfar = th.t;
+    *hit = Hit{th.t, ids[i], th.u, th.v};
+  }
+  return found;
+}
+
+// The pack count comes from the reference, so the packs are read without waiting for the header.
+template <bool kRobust, bool kAnyHit>
+[[gnu::always_inline]] inline bool intersect_fast_leaf(NodeRef ref, const TraversalRay& r,
+                                                       float& tfar, Hit* hit) {
+  bool found = false;
+  const TriPack4* packs = leaf_payload<TriPack4>(ref_ptr<LeafHeader>(ref));
+  const uint32_t pack_count = leaf_code(ref);
+  for (uint32_t k = 0; k < pack_count; ++k) {
+    const TriPack4& p = packs[k];
+    if constexpr (kRobust) {
+      for (int lane = 0; lane < 4; ++lane) {
+        if (p.prim[lane] == kInvalidId) break;
+        const Vec3f a{p.p[0][lane], p.p[1][lane], p.p[2][lane]};
+        const Vec3f b{p.p[3][lane], p.p[4][lane], p.p[5][lane]};
+        const Vec3f c{p.p[6][lane], p.p[7][lane], p.p[8][lane]};
+        TriangleHit th;
+        if (!intersect_watertight(a, b, c, r, tfar, th)) continue;
+        if constexpr (kAnyHit) return true;
+        found = true;
+        tfar = th.t;
+        *hit = Hit{th.t, p.prim[lane], th.u, th.v};
+      }
+    } else {
+      // Two packs per AVX2 pass while two remain, the last odd one with SSE. A closest-hit
+      // query lets the SIMD test pass hits a hair beyond tfar and decides on the divided t, so
+      // equal distances are settled by the lower triangle index whatever the visiting order
+      // (single rays and packets visit in different orders and must agree bit for bit).
+      const float filter_tfar = kAnyHit ? tfar : tfar * kTieSlack;
+      TriangleHit th[8];
+      int mask;
+      const TriPack4* first = &p;
+      if (k + 1 < pack_count) {
+        mask = intersect_two_packs_mt(p.p, packs[k + 1].p, r, filter_tfar, th);
+        ++k;
+      } else {
+        mask = intersect_pack_mt(p.p, r, filter_tfar, th);
+      }
+      if (!mask) continue;
+      if constexpr (kAnyHit) return true;
+      while (mask) {
+        const int lane = __builtin_ctz(mask);
+        mask &= mask - 1;
+        const uint32_t prim = first[lane / 4].prim[lane % 4];
+        if (is_nearer_hit(th[lane].t, prim, tfar, *hit)) {
+          found = true;
+          tfar = th[lane].t;
+          *hit = Hit{th[lane].t, prim, th[lane].u, th[lane].v};
+        }
+      }
+    }
+  }
+  return found;
+}
+
+// Brings a block the ray will visit soon into L1 while the current one is tested: the lines of an
+// N-wide node (2, 3 or 4; a leaf's header and first pack span three).
+template <int N>
+inline void prefetch_block(NodeRef ref) {
+  const char* p = ref_ptr<const char>(ref);
+  _mm_prefetch(p, _MM_HINT_T0);
+  _mm_prefetch(p + 64, _MM_HINT_T0);
+  if constexpr (N >= 4) _mm_prefetch(p + 128, _MM_HINT_T0);
+  if constexpr (N >= 8) _mm_prefetch(p + 192, _MM_HINT_T0);
+}
+
+// One ray through the subtree at `start`. Closest hit: `tfar` and `*hit` are updated on every
+// nearer hit (the caller initialises them, so a packet can hand over a ray mid-way); any hit:
+// returns at the first one.
+template <int N, bool kCompact, bool kRobust, bool kAnyHit>
+bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRay& ray,
+                   float& tfar_io, Hit* hit) {
+  using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
+  // Local copies: the leaf tests store through `hit`, which the compiler would otherwise have to
+  // assume may change the ray and tfar, reloading them at every node.
+  const TraversalRay r = ray;
+  float tfar = tfar_io;
+  bool found = false;
+  StackEntry stack[kStackSize];
+  int sp = 0;
+  NodeRef cur = start;
+  for (;;) {
+    while (!is_leaf(cur)) {
+      const Node& node = *ref_ptr<Node>(cur);
+      alignas(32) float dist[N];
+      int mask = NodeTest<N, kCompact, kRobust>::run(node, r, tfar, dist);
+      if constexpr (kCompact) {
+        // Slots past the last child decode to an inverted box, but a degenerate parent box
+        // (all extents 0) would not reject them: mask them out explicitly.
+        for (int i = 0; i < N; ++i) {
+          if (node.child[i] == kEmptyRef) mask &= ~(1 << i);
+        }
+      }
+      if (mask == 0) goto pop;
+      const int i0 = __builtin_ctz(mask);
+      mask &= mask - 1;
+      NodeRef c0 = node.child[i0];
+      if (mask == 0) {
+        cur = c0;
+        continue;
+      }
+      if constexpr (kAnyHit) {
+        // Any hit ends the query, so the order costs more than it saves: push the rest as
+        // they come (their distances are never read).
+        do {
+          const int i = __builtin_ctz(mask);
+          mask &= mask - 1;
+          prefetch_block<N>(node.child[i]);
+          stack[sp++] = {node.child[i], 0.0f};
+        } while (mask);
+        cur = c0;
+        continue;
+      } else {
+        const int i1 = __builtin_ctz(mask);
+        mask &= mask - 1;
+        NodeRef c1 = node.child[i1];
+        float d0 = dist[i0], d1 = dist[i1];
+        if (mask == 0) {
+          // Two children, the common case: visit the nearer, push the farther.
+          if (d1 < d0) {
+            std::swap(c0, c1);
+            std::swap(d0, d1);
+          }
+          prefetch_block<N>(c1);
+          stack[sp++] = {c1, d1};
+          cur = c0;
+          continue;
+        }
+        // Three or more: push all, sort the new entries by descending distance (insertion
+        // sort over at most N), continue with the nearest.
+        StackEntry* base = stack + sp;
+        base[0] = {c0, d0};
+        base[1] = {c1, d1};
+        int count = 2;
+        do {
+          const int i = __builtin_ctz(mask);
+          mask &= mask - 1;
+          base[count++] = {node.child[i], dist[i]};
+        } while (mask);
+        for (int a = 1; a < count; ++a) {
+          const StackEntry e = base[a];
+          int b = a;
+          while (b > 0 && base[b - 1].dist < e.dist) {
+            base[b] = base[b - 1];
+            --b;
+          }
+          base[b] = e;
+        }
+        for (int a = 0; a < count - 1; ++a) prefetch_block<N>(base[a].ref);
+        sp += count - 1;
+        cur = base[count - 1].ref;
+      }
+    }
+    {
+      bool leaf_hit;
+      if constexpr (kCompact)
+        leaf_hit =
+            intersect_compact_leaf<kRobust, kAnyHit>(ref_ptr<LeafHeader>(cur), ctx, r, tfar, hit);
+      else
+        leaf_hit = intersect_fast_leaf<kRobust, kAnyHit>(cur, r, tfar, hit);
+      if (leaf_hit) {
+        if constexpr (kAnyHit) return true;
+        found = true;
+      }
+    }
+  pop:
+    for (;;) {
+      if (sp == 0) {
+        tfar_io = tfar;
+        return found;
+      }
+      const StackEntry& e = stack[--sp];
+      if (kAnyHit || e.dist <= tfar) {
+        cur = e.ref;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace tuneray::bvh::detail
