@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "accel/embree_native.h"
+#include "batch_check.h"
 #include "test_geometry.h"
 
 namespace tuneray::test {
@@ -29,21 +30,8 @@ TEST(NativeBatch, CoherentAndIncoherentBatchesFindTheSingleRayHitsBitForBit) {
   native.build(mesh.view());
   const std::vector<Ray> rays = pixel_order_rays(48, 40);
   size_t hit_count = 0;
-  for (RayCoherence coherence : {RayCoherence::kCoherent, RayCoherence::kIncoherent}) {
-    std::vector<Hit> hits(rays.size());
-    native.intersect_batch(rays, hits, coherence);
-    for (size_t i = 0; i < rays.size(); ++i) {
-      Hit single;
-      native.intersect(rays[i], single);
-      SCOPED_TRACE("ray " + std::to_string(i));
-      ASSERT_EQ(single.prim, hits[i].prim);
-      if (!single.valid()) continue;
-      ++hit_count;
-      EXPECT_EQ(single.t, hits[i].t);
-      EXPECT_EQ(single.u, hits[i].u);
-      EXPECT_EQ(single.v, hits[i].v);
-    }
-  }
+  for (RayCoherence coherence : {RayCoherence::kCoherent, RayCoherence::kIncoherent})
+    hit_count += expect_batch_hits_are_single_ray_hits(native, rays, coherence);
   // The grid must both hit and miss the sphere for the comparison to mean something.
   EXPECT_GT(hit_count, rays.size() / 4);
   EXPECT_LT(hit_count, 2 * rays.size());

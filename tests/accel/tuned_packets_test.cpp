@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "accel/tuned_bvh.h"
-#include "compare_backends.h"
+#include "batch_check.h"
 #include "test_geometry.h"
 
 namespace tuneray::test {
@@ -26,25 +26,6 @@ std::vector<Ray> camera_rays(Vec3f eye, Vec3f forward, int width, int height, fl
       rays.push_back(Ray{eye, 0, normalize(forward + right * sx + down * sy), tfar});
     }
   return rays;
-}
-
-// Runs the coherent batch and the single-ray kernel over `rays`; returns the number of hits.
-size_t expect_batch_equals_singles(const TunedBvhAccel& tuned, const std::vector<Ray>& rays) {
-  std::vector<Hit> hits(rays.size());
-  tuned.intersect_batch(rays, hits, RayCoherence::kCoherent);
-  size_t hit_count = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    Hit single;
-    tuned.intersect(rays[i], single);
-    SCOPED_TRACE("ray " + std::to_string(i));
-    EXPECT_EQ(single.prim, hits[i].prim);
-    if (!single.valid()) continue;
-    ++hit_count;
-    EXPECT_EQ(single.t, hits[i].t);
-    EXPECT_EQ(single.u, hits[i].u);
-    EXPECT_EQ(single.v, hits[i].v);
-  }
-  return hit_count;
 }
 
 const char* const kConfigs[] = {
@@ -68,7 +49,7 @@ TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
     SCOPED_TRACE(text);
     TunedBvhAccel tuned(parse_bvh_config(text));
     tuned.build(mesh.view());
-    const size_t hits = expect_batch_equals_singles(tuned, rays);
+    const size_t hits = expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent);
     // Both hits and misses, or the comparison means little.
     EXPECT_GT(hits, rays.size() / 4);
     EXPECT_LT(hits, rays.size());
@@ -90,7 +71,8 @@ TEST(TunedPackets, EqualDistancesGoToTheLowerTriangleOnBothPaths) {
     SCOPED_TRACE(text);
     TunedBvhAccel tuned(parse_bvh_config(text));
     tuned.build(twice.view());
-    EXPECT_GT(expect_batch_equals_singles(tuned, rays), rays.size() / 4);
+    EXPECT_GT(expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent),
+              rays.size() / 4);
     std::vector<Hit> hits(rays.size());
     tuned.intersect_batch(rays, hits, RayCoherence::kCoherent);
     for (const Hit& h : hits) {
