@@ -41,57 +41,30 @@ struct StackEntry {
 
 // ---- box tests: bit i of the result = child i entered within [tnear, tfar]; dist[i] = entry.
 
-template <bool kRobust>
-inline int box_test8(const __m256 (&nears)[3], const __m256 (&fars)[3], const TraversalRay& r,
-                     float tfar, float* dist) {
-  __m256 tn[3], tf[3];
+// N = L::kWidth children at once (SSE for 4-wide nodes, AVX2 for 8-wide ones).
+template <class L, bool kRobust>
+inline int box_test(const typename L::V (&nears)[3], const typename L::V (&fars)[3],
+                    const TraversalRay& r, float tfar, float* dist) {
+  using V = typename L::V;
+  V tn[3], tf[3];
   for (int a = 0; a < 3; ++a) {
-    const __m256 near = nears[a];
-    const __m256 far = fars[a];
-    const __m256 inv = _mm256_set1_ps(r.inv[a]);
+    const V inv = L::set1(r.inv[a]);
     if constexpr (kRobust) {
-      const __m256 org = _mm256_set1_ps(r.org[a]);
-      tn[a] = _mm256_mul_ps(_mm256_sub_ps(near, org), inv);
-      tf[a] = _mm256_mul_ps(_mm256_sub_ps(far, org), inv);
+      const V org = L::set1(r.org[a]);
+      tn[a] = L::mul(L::sub(nears[a], org), inv);
+      tf[a] = L::mul(L::sub(fars[a], org), inv);
     } else {
-      const __m256 oi = _mm256_set1_ps(r.org_inv[a]);
-      tn[a] = _mm256_fmsub_ps(near, inv, oi);
-      tf[a] = _mm256_fmsub_ps(far, inv, oi);
+      const V oi = L::set1(r.org_inv[a]);
+      tn[a] = L::fmsub(nears[a], inv, oi);
+      tf[a] = L::fmsub(fars[a], inv, oi);
     }
   }
-  const __m256 tmin =
-      _mm256_max_ps(_mm256_max_ps(tn[0], tn[1]), _mm256_max_ps(tn[2], _mm256_set1_ps(r.tnear)));
-  __m256 tmax = _mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), tf[2]);
-  if constexpr (kRobust) tmax = _mm256_mul_ps(tmax, _mm256_set1_ps(kRobustFarScale));
-  tmax = _mm256_min_ps(tmax, _mm256_set1_ps(tfar));
-  _mm256_storeu_ps(dist, tmin);
-  return _mm256_movemask_ps(_mm256_cmp_ps(tmin, tmax, _CMP_LE_OQ));
-}
-
-template <bool kRobust>
-inline int box_test4(const __m128 (&nears)[3], const __m128 (&fars)[3], const TraversalRay& r,
-                     float tfar, float* dist) {
-  __m128 tn[3], tf[3];
-  for (int a = 0; a < 3; ++a) {
-    const __m128 near = nears[a];
-    const __m128 far = fars[a];
-    const __m128 inv = _mm_set1_ps(r.inv[a]);
-    if constexpr (kRobust) {
-      const __m128 org = _mm_set1_ps(r.org[a]);
-      tn[a] = _mm_mul_ps(_mm_sub_ps(near, org), inv);
-      tf[a] = _mm_mul_ps(_mm_sub_ps(far, org), inv);
-    } else {
-      const __m128 oi = _mm_set1_ps(r.org_inv[a]);
-      tn[a] = _mm_fmsub_ps(near, inv, oi);
-      tf[a] = _mm_fmsub_ps(far, inv, oi);
-    }
-  }
-  const __m128 tmin = _mm_max_ps(_mm_max_ps(tn[0], tn[1]), _mm_max_ps(tn[2], _mm_set1_ps(r.tnear)));
-  __m128 tmax = _mm_min_ps(_mm_min_ps(tf[0], tf[1]), tf[2]);
-  if constexpr (kRobust) tmax = _mm_mul_ps(tmax, _mm_set1_ps(kRobustFarScale));
-  tmax = _mm_min_ps(tmax, _mm_set1_ps(tfar));
-  _mm_storeu_ps(dist, tmin);
-  return _mm_movemask_ps(_mm_cmple_ps(tmin, tmax));
+  const V tmin = L::max(L::max(tn[0], tn[1]), L::max(tn[2], L::set1(r.tnear)));
+  V tmax = L::min(L::min(tf[0], tf[1]), tf[2]);
+  if constexpr (kRobust) tmax = L::mul(tmax, L::set1(kRobustFarScale));
+  tmax = L::min(tmax, L::set1(tfar));
+  L::store(dist, tmin);
+  return L::movemask(L::le(tmin, tmax));
 }
 
 template <bool kRobust>
@@ -146,7 +119,7 @@ struct NodeTest<8, kCompact, kRobust> {
         fars[a] = _mm256_load_ps(n.bounds[fr]);
       }
     }
-    return box_test8<kRobust>(nears, fars, r, tfar, dist);
+    return box_test<Lanes8, kRobust>(nears, fars, r, tfar, dist);
   }
 };
 
@@ -172,7 +145,7 @@ struct NodeTest<4, kCompact, kRobust> {
         fars[a] = _mm_load_ps(n.bounds[fr]);
       }
     }
-    return box_test4<kRobust>(nears, fars, r, tfar, dist);
+    return box_test<Lanes4, kRobust>(nears, fars, r, tfar, dist);
   }
 };
 

@@ -62,7 +62,8 @@ struct TriangleHit {
 
 // The Möller-Trumbore test is written once over a SIMD width: 4 lanes (SSE, one pack) or 8 lanes
 // (AVX2, two packs side by side). Each lane computes exactly the same operations at either width,
-// so a triangle gives the same t, u, v whichever path tests it.
+// so a triangle gives the same t, u, v whichever path tests it. The traversal's box test of 4- and
+// 8-wide nodes uses the same lanes.
 struct Lanes4 {
   using V = __m128;
   static constexpr int kWidth = 4;
@@ -73,6 +74,8 @@ struct Lanes4 {
   static V div(V a, V b) { return _mm_div_ps(a, b); }
   static V fmadd(V a, V b, V c) { return _mm_fmadd_ps(a, b, c); }
   static V fmsub(V a, V b, V c) { return _mm_fmsub_ps(a, b, c); }
+  static V min(V a, V b) { return _mm_min_ps(a, b); }
+  static V max(V a, V b) { return _mm_max_ps(a, b); }
   static V and_(V a, V b) { return _mm_and_ps(a, b); }
   static V xor_(V a, V b) { return _mm_xor_ps(a, b); }
   static V gt(V a, V b) { return _mm_cmpgt_ps(a, b); }
@@ -93,6 +96,8 @@ struct Lanes8 {
   static V div(V a, V b) { return _mm256_div_ps(a, b); }
   static V fmadd(V a, V b, V c) { return _mm256_fmadd_ps(a, b, c); }
   static V fmsub(V a, V b, V c) { return _mm256_fmsub_ps(a, b, c); }
+  static V min(V a, V b) { return _mm256_min_ps(a, b); }
+  static V max(V a, V b) { return _mm256_max_ps(a, b); }
   static V and_(V a, V b) { return _mm256_and_ps(a, b); }
   static V xor_(V a, V b) { return _mm256_xor_ps(a, b); }
   static V gt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }

@@ -86,6 +86,9 @@ bool TunedBvhAccel::occluded(const Ray& ray) const {
   return kernels_.occluded(context_, ray);
 }
 
+// The loops restate Accel's default ones because here the single-ray calls are not virtual (the
+// class is final): the default's would add an indirect call per ray to the wavefront's hottest
+// loops.
 void TunedBvhAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
                                     RayCoherence coherence) const {
   if (coherence == RayCoherence::kCoherent && coherent_batch_) {
