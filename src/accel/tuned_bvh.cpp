@@ -3,6 +3,7 @@
 #include <chrono>
 #include <utility>
 
+#include "accel/bvh_stream.h"
 #include "accel/bvh_walk.h"
 
 namespace tuneray {
@@ -31,6 +32,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
     context_ = {};
     kernels_ = {};
     coherent_batch_ = nullptr;
+    occluded_batch_ = nullptr;
     tree_stats_ = {};
     throw;
   }
@@ -41,6 +43,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   context_ = {tree_->root(), geometry.positions, geometry.triangles};
   kernels_ = bvh::select_kernels(tree_->shape());
   coherent_batch_ = bvh::select_coherent_batch_kernel(tree_->shape());
+  occluded_batch_ = bvh::select_occluded_batch_kernel(tree_->shape());
 
   tree_stats_ = bvh::measure_tree(*tree_, config_.trav_cost, config_.int_cost);
   const bvh::TreeStats& ts = tree_stats_;
@@ -73,6 +76,7 @@ void TunedBvhAccel::swap_tree(TunedBvhAccel& other) noexcept {
   swap(context_, other.context_);
   swap(kernels_, other.kernels_);
   swap(coherent_batch_, other.coherent_batch_);
+  swap(occluded_batch_, other.occluded_batch_);
   swap(tree_stats_, other.tree_stats_);
 }
 
@@ -103,6 +107,10 @@ void TunedBvhAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hi
 
 void TunedBvhAccel::occluded_batch(std::span<const Ray> rays,
                                    std::span<uint8_t> occluded_out) const {
+  if (occluded_batch_) {
+    occluded_batch_(context_, rays.data(), rays.size(), occluded_out.data());
+    return;
+  }
   for (size_t i = 0; i < rays.size(); ++i) occluded_out[i] = occluded(rays[i]) ? 1 : 0;
 }
 

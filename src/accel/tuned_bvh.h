@@ -9,6 +9,7 @@
 #include "accel/bvh_build.h"
 #include "accel/bvh_config.h"
 #include "accel/bvh_packet.h"
+#include "accel/bvh_stream.h"
 #include "accel/bvh_traverse.h"
 #include "accel/bvh_tree.h"
 #include "accel/bvh_walk.h"
@@ -59,6 +60,7 @@ class TunedBvhAccel final : public Accel {
   bvh::TraversalContext context_;
   bvh::Kernels kernels_;
   bvh::IntersectBatchKernel coherent_batch_ = nullptr;  // packets; none for some layouts
+  bvh::OccludedBatchKernel occluded_batch_ = nullptr;   // streams; none for some layouts
   bvh::TreeStats tree_stats_;
 };
 

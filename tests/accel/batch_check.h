@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,21 @@ inline size_t expect_batch_hits_are_single_ray_hits(const Accel& accel,
     EXPECT_EQ(single.v, hits[i].v);
   }
   return hit_count;
+}
+
+// Every ray of the batch must be blocked exactly when the single-ray call says so. Returns how
+// many are blocked.
+inline size_t expect_batch_occlusion_is_single_ray_occlusion(const Accel& accel,
+                                                             const std::vector<Ray>& rays) {
+  std::vector<uint8_t> blocked(rays.size(), 2);
+  accel.occluded_batch(rays, blocked);
+  size_t blocked_count = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const uint8_t single = accel.occluded(rays[i]) ? 1 : 0;
+    EXPECT_EQ(single, blocked[i]) << "ray " << i;
+    blocked_count += single;
+  }
+  return blocked_count;
 }
 
 }  // namespace tuneray::test
