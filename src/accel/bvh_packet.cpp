@@ -55,7 +55,9 @@ void make_packet(const Ray* rays, const uint32_t* index, int count, Packet& pk) 
     pk.org_inv[a] = _mm256_load_ps(org_inv[a]);
     pk.org[a] = _mm256_load_ps(org[a]);
     pk.dir[a] = _mm256_load_ps(dir[a]);
-    pk.near_row[a] = pk.ray[0].near_row[a];
+    // From the sign bits the rays were grouped by, not from a ray's own rows: a ray with a NaN
+    // direction (which enters no box) must not hand its rows to the others.
+    pk.near_row[a] = std::signbit(rays[index[0]].dir[a]) ? a + 3 : a;
     pk.far_row[a] = pk.near_row[a] < 3 ? pk.near_row[a] + 3 : pk.near_row[a] - 3;
   }
   pk.tnear = _mm256_load_ps(tnear);

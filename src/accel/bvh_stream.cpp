@@ -62,13 +62,18 @@ struct ChildRays<4> {
   }
 };
 
-// The rays of `live` (all of one octant) through the tree; returns those that are blocked.
+// The rays of `live`, all of direction octant `octant` (bit a set = negative along axis a),
+// through the tree; returns those that are blocked.
 template <int N>
-uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, uint32_t live) {
+uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, uint32_t live,
+                        int octant) {
   using Node = FastNode<N>;
   using L = LanesOf<N>;
   using V = typename L::V;
-  const int* near_row = ray[__builtin_ctz(live)].near_row;
+  // The near planes come from the octant, not from one of the rays: a ray with a NaN direction
+  // (which enters no box) must not hand its rows to the others.
+  int near_row[3];
+  for (int a = 0; a < 3; ++a) near_row[a] = (octant >> a) & 1 ? a + 3 : a;
   StreamEntry stack[kStackSize];
   int sp = 0;
   stack[sp++] = {ctx.root, live};
@@ -124,8 +129,6 @@ void occluded_batch_stream(const TraversalContext& ctx, const Ray* rays, size_t 
                            uint8_t* occluded) {
   std::fill(occluded, occluded + count, uint8_t{0});
   if (ctx.root == kEmptyRef || count == 0) return;
-  // The octant of each ray is read off its near rows, so a group's shared rows are exactly the
-  // ones each of its rays would use alone.
   thread_local std::vector<uint32_t> order;
   thread_local std::vector<uint8_t> octant_of;
   order.resize(count);
@@ -133,8 +136,8 @@ void occluded_batch_stream(const TraversalContext& ctx, const Ray* rays, size_t 
   size_t begin[9] = {};
   for (size_t i = 0; i < count; ++i) {
     const Vec3f& d = rays[i].dir;
-    // The sign test of make_traversal_ray: a component that is -0 or tiny and negative counts
-    // as negative.
+    // The sign test of make_traversal_ray (a -0 or tiny negative component counts as
+    // negative), so a group's near planes are the ones each of its rays would use alone.
     const int o =
         (std::signbit(d.x) ? 1 : 0) | (std::signbit(d.y) ? 2 : 0) | (std::signbit(d.z) ? 4 : 0);
     octant_of[i] = static_cast<uint8_t>(o);
@@ -162,7 +165,7 @@ void occluded_batch_stream(const TraversalContext& ctx, const Ray* rays, size_t 
         continue;
       }
       const uint32_t live = n == 32 ? ~0u : (1u << n) - 1;
-      uint32_t blocked = occlude_stream<N>(ctx, group, live);
+      uint32_t blocked = occlude_stream<N>(ctx, group, live, o);
       for (; blocked; blocked &= blocked - 1) occluded[order[first + __builtin_ctz(blocked)]] = 1;
     }
   }

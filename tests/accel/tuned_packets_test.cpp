@@ -3,6 +3,7 @@
 // packets) stays the tile image (single rays).
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,23 @@ TEST(TunedPackets, EqualDistancesGoToTheLowerTriangleOnBothPaths) {
       }
     }
   }
+}
+
+TEST(TunedPackets, ARayWithANanDirectionLeadingItsPacketChangesNoOtherHit) {
+  const Mesh mesh = make_soup(4000, 43, 0.08f);
+  // A NaN x component has a clear sign bit, so the ray joins the camera rays going towards +x;
+  // first in the batch, it leads their packet. It enters no box and hits nothing.
+  std::vector<Ray> rays = {
+      Ray{Vec3f(0.5f), 0, Vec3f(std::numeric_limits<float>::quiet_NaN(), 0.1f, 1), kInf}};
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      const Vec3f d(0.01f + 0.02f * static_cast<float>(x), 0.01f + 0.02f * static_cast<float>(y),
+                    1);
+      rays.push_back(Ray{Vec3f(0.35f, 0.35f, -0.5f), 0, normalize(d), kInf});
+    }
+  TunedBvhAccel tuned(parse_bvh_config("branching=8,sah_block_size=4,min_leaf=4,max_leaf=28"));
+  tuned.build(mesh.view());
+  EXPECT_GT(expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent), 20u);
 }
 
 }  // namespace

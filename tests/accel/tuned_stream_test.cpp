@@ -2,6 +2,7 @@
 // any-hit kernel: every ray must get the same answer, whatever group it was traced in.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "accel/tuned_bvh.h"
@@ -90,6 +91,22 @@ TEST(TunedStream, RayCountsAroundTheStreamSizeAndATreeThatIsOneLeaf) {
           tuned, std::vector<Ray>(all.begin(), all.begin() + static_cast<long>(n)));
     }
   }
+}
+
+TEST(TunedStream, ARayWithANanDirectionLeadingItsGroupChangesNoOtherAnswer) {
+  const Mesh mesh = make_soup(4000, 37, 0.06f);
+  // A NaN x component has a clear sign bit, so the ray joins the rays going towards +x; first in
+  // the batch, it leads their group. It enters no box and is never blocked.
+  std::vector<Ray> rays = {
+      Ray{Vec3f(0.5f), 0, Vec3f(std::numeric_limits<float>::quiet_NaN(), 0.1f, 1), kInf}};
+  Pcg32 rng(41);
+  for (int i = 0; i < 40; ++i) {
+    const Vec3f o(0.3f + 0.4f * rng.next_float(), 0.3f + 0.4f * rng.next_float(), -0.5f);
+    rays.push_back(Ray{o, 0, normalize(Vec3f(0.1f, 0.1f, 1)), kInf});
+  }
+  TunedBvhAccel tuned(parse_bvh_config("branching=8,sah_block_size=4,min_leaf=4,max_leaf=28"));
+  tuned.build(mesh.view());
+  EXPECT_GT(expect_batch_occlusion_is_single_ray_occlusion(tuned, rays), 20u);
 }
 
 }  // namespace
