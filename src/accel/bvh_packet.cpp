@@ -31,8 +31,8 @@ struct Packet {
   int near_row[3], far_row[3];
 };
 
-// The rays must share an octant (the packet box test picks one near plane per axis).
-void make_packet(const Ray* rays, const uint32_t* index, int count, Packet& pk) {
+// The rays must share the octant `octant` (the packet box test picks one near plane per axis).
+void make_packet(const Ray* rays, const uint32_t* index, int count, int octant, Packet& pk) {
   alignas(32) float inv[3][kPacketSize], org_inv[3][kPacketSize], org[3][kPacketSize],
       dir[3][kPacketSize], tnear[kPacketSize];
   for (int i = 0; i < kPacketSize; ++i) {
@@ -50,14 +50,12 @@ void make_packet(const Ray* rays, const uint32_t* index, int count, Packet& pk) 
     pk.tfar[i] = i < count ? r.tfar : -kInf;
     pk.hit[i] = Hit{};
   }
+  near_rows_of_octant(octant, pk.near_row);
   for (int a = 0; a < 3; ++a) {
     pk.inv[a] = _mm256_load_ps(inv[a]);
     pk.org_inv[a] = _mm256_load_ps(org_inv[a]);
     pk.org[a] = _mm256_load_ps(org[a]);
     pk.dir[a] = _mm256_load_ps(dir[a]);
-    // From the sign bits the rays were grouped by, not from a ray's own rows: a ray with a NaN
-    // direction (which enters no box) must not hand its rows to the others.
-    pk.near_row[a] = std::signbit(rays[index[0]].dir[a]) ? a + 3 : a;
     pk.far_row[a] = pk.near_row[a] < 3 ? pk.near_row[a] + 3 : pk.near_row[a] - 3;
   }
   pk.tnear = _mm256_load_ps(tnear);
@@ -241,45 +239,17 @@ void traverse_packet(const TraversalContext& ctx, Packet& pk, uint32_t live) {
   }
 }
 
-// Sorts a batch into its direction octants (as Embree's ray streams do) and calls
-// `packet(index, n)` for each group of up to 8 rays of one octant, in batch order within an
-// octant; `single(i)` for the rays of groups too thin to be worth a packet.
-template <class PacketFn, class SingleFn>
-void for_each_packet(const Ray* rays, size_t count, PacketFn packet, SingleFn single) {
-  thread_local std::vector<uint32_t> order;
-  order.resize(count);
-  size_t begin[9] = {};
-  auto octant = [&](size_t i) {
-    const Vec3f& d = rays[i].dir;
-    return (std::signbit(d.x) ? 1 : 0) | (std::signbit(d.y) ? 2 : 0) | (std::signbit(d.z) ? 4 : 0);
-  };
-  for (size_t i = 0; i < count; ++i) ++begin[octant(i) + 1];
-  for (int o = 0; o < 8; ++o) begin[o + 1] += begin[o];
-  size_t fill[8];
-  std::copy(begin, begin + 8, fill);
-  for (size_t i = 0; i < count; ++i) order[fill[octant(i)]++] = static_cast<uint32_t>(i);
-  for (int o = 0; o < 8; ++o) {
-    for (size_t first = begin[o]; first < begin[o + 1]; first += kPacketSize) {
-      const int n = static_cast<int>(std::min<size_t>(kPacketSize, begin[o + 1] - first));
-      if (n <= kSwitchThreshold) {
-        for (int i = 0; i < n; ++i) single(order[first + i]);
-      } else {
-        packet(&order[first], n);
-      }
-    }
-  }
-}
-
 template <int N>
 void intersect_batch_packets(const TraversalContext& ctx, const Kernels& single, const Ray* rays,
                              size_t count, Hit* hits) {
   for (size_t i = 0; i < count; ++i) hits[i] = Hit{};
   if (ctx.root == kEmptyRef) return;
-  for_each_packet(
-      rays, count,
-      [&](const uint32_t* index, int n) {
+  // Octant runs of 3 rays or fewer go ray by ray, as thinned-out packets do.
+  for_each_octant_group(
+      rays, count, kPacketSize, kSwitchThreshold + 1,
+      [&](const uint32_t* index, int n, int octant) {
         Packet pk;
-        make_packet(rays, index, n, pk);
+        make_packet(rays, index, n, octant, pk);
         traverse_packet<N>(ctx, pk, (1u << n) - 1);
         for (int i = 0; i < n; ++i) hits[index[i]] = pk.hit[i];
       },

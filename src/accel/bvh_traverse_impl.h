@@ -6,9 +6,12 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "accel/bvh_layout.h"
 #include "accel/bvh_traverse.h"
@@ -94,58 +97,36 @@ inline int box_test2(const float (&rows)[6][2], const TraversalRay& r, float tfa
   return mask;
 }
 
-template <int N, bool kCompact, bool kRobust>
-struct NodeTest;
-
-template <bool kCompact, bool kRobust>
-struct NodeTest<8, kCompact, kRobust> {
-  using Node = std::conditional_t<kCompact, CompactNode<8>, FastNode<8>>;
-  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
-    // Near and far planes are loaded directly by the ray's octant: no dynamically indexed
-    // register array (which would be spilled to the stack on every node).
-    __m256 nears[3], fars[3];
+// The near and far planes of a 4- or 8-wide node's children for rays of one octant
+// (`near_row`), loaded directly by row: no dynamically indexed register array, which would be
+// spilled to the stack on every node.
+template <int N, bool kCompact>
+struct NodePlanes {
+  using L = LanesOf<N>;
+  using V = typename L::V;
+  using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
+  static void load(const Node& n, const int* near_row, V (&nears)[3], V (&fars)[3]) {
     for (int a = 0; a < 3; ++a) {
-      const int nr = r.near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
+      const int nr = near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
       if constexpr (kCompact) {
-        const __m256 scale = _mm256_set1_ps(n.scale[a]), origin = _mm256_set1_ps(n.origin[a]);
-        auto decode = [&](int row) {
-          const __m128i bytes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(n.q[row]));
-          return _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(bytes)), scale, origin);
-        };
-        nears[a] = decode(nr);
-        fars[a] = decode(fr);
+        const V scale = L::set1(n.scale[a]), origin = L::set1(n.origin[a]);
+        nears[a] = L::decode_u8(n.q[nr], scale, origin);
+        fars[a] = L::decode_u8(n.q[fr], scale, origin);
       } else {
-        nears[a] = _mm256_load_ps(n.bounds[nr]);
-        fars[a] = _mm256_load_ps(n.bounds[fr]);
+        nears[a] = L::load(n.bounds[nr]);
+        fars[a] = L::load(n.bounds[fr]);
       }
     }
-    return box_test<Lanes8, kRobust>(nears, fars, r, tfar, dist);
   }
 };
 
-template <bool kCompact, bool kRobust>
-struct NodeTest<4, kCompact, kRobust> {
-  using Node = std::conditional_t<kCompact, CompactNode<4>, FastNode<4>>;
-  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
-    __m128 nears[3], fars[3];
-    for (int a = 0; a < 3; ++a) {
-      const int nr = r.near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
-      if constexpr (kCompact) {
-        const __m128 scale = _mm_set1_ps(n.scale[a]), origin = _mm_set1_ps(n.origin[a]);
-        auto decode = [&](int row) {
-          int32_t packed;
-          std::memcpy(&packed, n.q[row], 4);
-          const __m128 q = _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(packed)));
-          return _mm_fmadd_ps(q, scale, origin);
-        };
-        nears[a] = decode(nr);
-        fars[a] = decode(fr);
-      } else {
-        nears[a] = _mm_load_ps(n.bounds[nr]);
-        fars[a] = _mm_load_ps(n.bounds[fr]);
-      }
-    }
-    return box_test<Lanes4, kRobust>(nears, fars, r, tfar, dist);
+template <int N, bool kCompact, bool kRobust>
+struct NodeTest {
+  using Planes = NodePlanes<N, kCompact>;
+  static int run(const typename Planes::Node& n, const TraversalRay& r, float tfar, float* dist) {
+    typename Planes::V nears[3], fars[3];
+    Planes::load(n, r.near_row, nears, fars);
+    return box_test<typename Planes::L, kRobust>(nears, fars, r, tfar, dist);
   }
 };
 
@@ -364,6 +345,54 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
       if (kAnyHit || e.dist <= tfar) {
         cur = e.ref;
         break;
+      }
+    }
+  }
+}
+
+// ---- batches: groups of rays of one direction octant, for the packet and stream kernels.
+
+// Bit a set = the direction is negative along axis a, by the sign test of make_traversal_ray (a
+// -0 or tiny negative component counts as negative), so a group's shared near planes are the ones
+// each of its rays would use alone.
+inline int direction_octant(const Vec3f& d) {
+  return (std::signbit(d.x) ? 1 : 0) | (std::signbit(d.y) ? 2 : 0) | (std::signbit(d.z) ? 4 : 0);
+}
+
+// A group's near planes come from its octant, never from one of its rays: a ray with a NaN
+// direction (which enters no box) must not hand its rows to the others.
+inline void near_rows_of_octant(int octant, int (&near_row)[3]) {
+  for (int a = 0; a < 3; ++a) near_row[a] = (octant >> a) & 1 ? a + 3 : a;
+}
+
+// Sorts a batch into direction octants (as Embree's ray streams do) and calls
+// `group(index, n, octant)` for each run of up to `size` rays of one octant, in batch order within
+// the octant (`index` holds their batch positions), or `single(i)` for each ray of a run shorter
+// than `min_size`, too thin to be worth a group.
+template <class GroupFn, class SingleFn>
+void for_each_octant_group(const Ray* rays, size_t count, int size, int min_size, GroupFn group,
+                           SingleFn single) {
+  thread_local std::vector<uint32_t> order;
+  thread_local std::vector<uint8_t> octant_of;
+  order.resize(count);
+  octant_of.resize(count);
+  size_t begin[9] = {};
+  for (size_t i = 0; i < count; ++i) {
+    octant_of[i] = static_cast<uint8_t>(direction_octant(rays[i].dir));
+    ++begin[octant_of[i] + 1];
+  }
+  for (int o = 0; o < 8; ++o) begin[o + 1] += begin[o];
+  size_t fill[8];
+  std::copy(begin, begin + 8, fill);
+  for (size_t i = 0; i < count; ++i) order[fill[octant_of[i]]++] = static_cast<uint32_t>(i);
+  for (int o = 0; o < 8; ++o) {
+    for (size_t first = begin[o]; first < begin[o + 1]; first += static_cast<size_t>(size)) {
+      const int n =
+          static_cast<int>(std::min<size_t>(static_cast<size_t>(size), begin[o + 1] - first));
+      if (n < min_size) {
+        for (int i = 0; i < n; ++i) single(order[first + i]);
+      } else {
+        group(&order[first], n, o);
       }
     }
   }

@@ -11,6 +11,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <utility>
 
 #include "math/vec.h"
@@ -84,6 +86,14 @@ struct Lanes4 {
   static V lt(V a, V b) { return _mm_cmplt_ps(a, b); }
   static int movemask(V a) { return _mm_movemask_ps(a); }
   static void store(float* p, V a) { _mm_store_ps(p, a); }
+  static V load(const float* p) { return _mm_load_ps(p); }
+  // 4 bytes as origin + q * scale (the compact node planes).
+  static V decode_u8(const uint8_t* q, V scale, V origin) {
+    int32_t packed;
+    std::memcpy(&packed, q, 4);
+    const __m128 f = _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(packed)));
+    return _mm_fmadd_ps(f, scale, origin);
+  }
 };
 
 struct Lanes8 {
@@ -106,7 +116,17 @@ struct Lanes8 {
   static V lt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
   static int movemask(V a) { return _mm256_movemask_ps(a); }
   static void store(float* p, V a) { _mm256_storeu_ps(p, a); }
+  static V load(const float* p) { return _mm256_load_ps(p); }
+  // 8 bytes as origin + q * scale (the compact node planes).
+  static V decode_u8(const uint8_t* q, V scale, V origin) {
+    const __m128i bytes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(q));
+    return _mm256_fmadd_ps(_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(bytes)), scale, origin);
+  }
 };
+
+// The lanes of an N-wide node's box test (N = 4 or 8).
+template <int N>
+using LanesOf = std::conditional_t<N == 8, Lanes8, Lanes4>;
 
 // rows: v0.xyz, e1.xyz, e2.xyz of kWidth triangles. Returns the lanes hit in (tnear, tfar) and
 // fills t/u/v of those lanes.

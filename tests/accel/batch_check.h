@@ -11,6 +11,21 @@
 
 namespace tuneray::test {
 
+// Tuned-BVH configurations that cover every choice of batch kernel: packets and streams (4- and
+// 8-wide fast trees, small leaves, spatial splits with the static relayout) and the single-ray
+// loop of the trees that have neither (2-wide, compact, robust).
+inline const char* const kBatchKernelConfigs[] = {
+    "branching=8,sah_block_size=4,min_leaf=4,max_leaf=28",  // Embree's BVH8 settings
+    "branching=4,sah_block_size=4,min_leaf=4,max_leaf=28",
+    "branching=8,max_leaf=4",
+    "branching=8,max_leaf=1",
+    "branching=8,quality=high,static=1",
+    "branching=2",
+    "branching=8,compact=1",
+    "branching=8,robust=1",
+    "branching=4,robust=1",
+};
+
 // Every ray of the batch must get the hit the single-ray call gives, bit for bit (triangle, t,
 // u, v). Returns how many rays hit.
 inline size_t expect_batch_hits_are_single_ray_hits(const Accel& accel,

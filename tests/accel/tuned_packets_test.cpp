@@ -29,16 +29,6 @@ std::vector<Ray> camera_rays(Vec3f eye, Vec3f forward, int width, int height, fl
   return rays;
 }
 
-const char* const kConfigs[] = {
-    "branching=8,sah_block_size=4,min_leaf=4,max_leaf=28",  // Embree's BVH8 settings
-    "branching=4,sah_block_size=4,min_leaf=4,max_leaf=28",
-    "branching=8,max_leaf=4",
-    "branching=8,quality=high,static=1",
-    "branching=2",  // no packet kernel: the batch loops over single rays
-    "branching=8,compact=1",
-    "branching=8,robust=1",
-};
-
 TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
   const Mesh mesh = make_soup(4000, 11, 0.08f);
   std::vector<Ray> rays = camera_rays(Vec3f(0.5f, 0.45f, -1.5f), Vec3f(0, 0, 1), 64, 48);
@@ -46,7 +36,7 @@ TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
   const std::vector<Ray> inside =
       camera_rays(Vec3f(0.52f, 0.5f, 0.6f), normalize(Vec3f(0.2f, -0.1f, -1)), 48, 40, 0.35f);
   rays.insert(rays.end(), inside.begin(), inside.end());
-  for (const char* text : kConfigs) {
+  for (const char* text : kBatchKernelConfigs) {
     SCOPED_TRACE(text);
     TunedBvhAccel tuned(parse_bvh_config(text));
     tuned.build(mesh.view());

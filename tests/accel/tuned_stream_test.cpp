@@ -51,22 +51,12 @@ std::vector<Ray> awkward_rays() {
   return rays;
 }
 
-const char* const kConfigs[] = {
-    "branching=8,sah_block_size=4,min_leaf=4,max_leaf=28",  // Embree's BVH8 settings
-    "branching=4,sah_block_size=4,min_leaf=4,max_leaf=28",
-    "branching=8,max_leaf=1",
-    "branching=8,quality=high,static=1",
-    "branching=2",  // no stream kernel: the batch loops over single rays
-    "branching=8,compact=1",
-    "branching=4,robust=1",
-};
-
 TEST(TunedStream, ShadowBatchesGetTheSingleRayAnswers) {
   const Mesh mesh = make_soup(4000, 17, 0.06f);
   std::vector<Ray> rays = shadow_rays(3000, 23);
   const std::vector<Ray> awkward = awkward_rays();
   rays.insert(rays.end(), awkward.begin(), awkward.end());
-  for (const char* text : kConfigs) {
+  for (const char* text : kBatchKernelConfigs) {
     SCOPED_TRACE(text);
     TunedBvhAccel tuned(parse_bvh_config(text));
     tuned.build(mesh.view());
