@@ -137,7 +137,7 @@ CommandAction add_bench_command(CLI::App& app) {
       ->capture_default_str();
   p->add_option("--reference-spp", peers->reference_spp,
                 "Samples per pixel of both references (cached)")
-      ->check(CLI::Range(1, 1 << 20))
+      ->check(CLI::Range(2, 1 << 20))
       ->capture_default_str();
   p->add_option("--repeats", peers->repeats, "Interleaved timing repeats (medians reported)")
       ->check(CLI::Range(1, 100))

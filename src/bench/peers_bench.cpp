@@ -70,6 +70,15 @@ std::string temporary_image_path(int spp) {
 
 }  // namespace
 
+double peer_rmse_against_truth(double rmse_against_reference, int spp, int reference_spp) {
+  if (spp >= reference_spp)
+    throw std::invalid_argument(
+        fmt::format("bench peers: a {}-spp pathtracer frame is part of its {}-spp reference", spp,
+                    reference_spp));
+  return rmse_against_reference /
+         std::sqrt(1.0 - static_cast<double>(spp) / static_cast<double>(reference_spp));
+}
+
 void check_peers_options(const PeersBenchOptions& o) {
   auto fail = [](const std::string& what) { throw std::invalid_argument("bench peers: " + what); };
   if (o.peer.width < 1 || o.peer.height < 1) fail("the image size must be positive");
@@ -77,7 +86,7 @@ void check_peers_options(const PeersBenchOptions& o) {
   if (o.times_s.empty()) fail("--times needs at least one time");
   for (double t : o.times_s)
     if (!(t > 0) || !std::isfinite(t)) fail(fmt::format("time {} is not a positive number", t));
-  if (o.reference_spp < 1) fail("--reference-spp must be at least 1");
+  if (o.reference_spp < 2) fail("--reference-spp must be at least 2");
   if (o.repeats < 1 || o.timing_frames < 1) fail("--repeats must be at least 1");
   if (!(o.frame_ms > 0) || !std::isfinite(o.frame_ms)) fail("--frame-ms must be a positive number");
 }
@@ -133,9 +142,10 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
                              "x" + std::to_string(o.peer.height) + " image");
   Image ours_truth_ldr = embree_output_transform(ours_truth);
 
-  // The pathtracer's frames at 1, 2, 4, ... spp until one frame takes the longest time.
+  // The pathtracer's frames at 1, 2, 4, ... spp until one frame takes the longest time, and at
+  // most half the reference's samples (see peer_rmse_against_truth).
   std::vector<std::vector<double>> embree_ms;  // [spp index][repeat]
-  for (int spp = 1; spp <= kMostPeerSpp; spp *= 2) {
+  for (int spp = 1; spp <= std::min(kMostPeerSpp, o.reference_spp / 2); spp *= 2) {
     EmbreePeerTiming t = embree_peer_benchmark(o.peer, spp, o.timing_frames);
     result.embree.push_back({spp, 0, 0});
     embree_ms.push_back({t.frame_ms});
@@ -144,9 +154,10 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
   say(fmt::format("pathtracer: {} frame sizes, up to {} spp", result.embree.size(),
                   result.embree.back().spp));
   for (PeerPoint& p : result.embree)
-    p.rmse =
+    p.rmse = peer_rmse_against_truth(
         compare_images(read_peer_image(o.peer, p.spp, temporary_image_path(p.spp)), embree_truth)
-            .rmse;
+            .rmse,
+        p.spp, o.reference_spp);
 
   RenderSettings settings;
   settings.width = o.peer.width;

@@ -31,7 +31,7 @@ void check_peers_options(const PeersBenchOptions& options);
 struct PeerPoint {
   int spp = 0;
   double frame_ms = 0;  // median over repeats
-  double rmse = 0;      // of its 8-bit output against its own reference
+  double rmse = 0;      // of its 8-bit output against the truth, estimated from its reference
 };
 
 struct PeersRow {
@@ -61,6 +61,14 @@ struct PeersResult {
 using PeersProgress = std::function<void(const std::string&)>;
 
 PeersResult run_peers_bench(const PeersBenchOptions& options, const PeersProgress& progress = {});
+
+// The pathtracer seeds sample i of a pixel by (pixel, i) alone, so an n-spp frame is the mean of
+// the first n of its N-spp reference's samples: the two share noise and their difference
+// underestimates the frame's error. For independent samples E|mean_n - mean_N|^2 =
+// s^2 (1/n - 1/N) while the error against the truth is s^2/n, so this divides by sqrt(1 - n/N).
+// Our runs use a seed of their own and stay uncorrected: against a reference with noise of its
+// own, our error reads up to sqrt(1 + n/N) too high, never too low. Throws for n >= N.
+double peer_rmse_against_truth(double rmse_against_reference, int spp, int reference_spp);
 
 // Where the pathtracer's reference is cached for these options.
 std::string embree_reference_path(const PeersBenchOptions& options);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <random>
 
 #include "bench/embree_peer.h"
 #include "bench/peers_bench.h"
@@ -106,7 +107,34 @@ TEST(PeersBench, RefusesOptionsThatMakeNoSense) {
                std::invalid_argument);
   EXPECT_THROW(refused([](PeersBenchOptions& o) { o.frame_ms = 0; })(), std::invalid_argument);
   EXPECT_THROW(refused([](PeersBenchOptions& o) { o.peer.width = 0; })(), std::invalid_argument);
-  EXPECT_THROW(refused([](PeersBenchOptions& o) { o.reference_spp = 0; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](PeersBenchOptions& o) { o.reference_spp = 1; })(), std::invalid_argument);
+}
+
+// The nesting correction against a simulation: pixels whose samples are unit Gaussians around
+// zero, each frame the mean of the first n of its reference's N samples. The corrected error
+// against the reference must match the error against the known truth (zero).
+TEST(PeersBench, NestedFrameErrorIsCorrectedToTheErrorAgainstTheTruth) {
+  const int n = 16, reference = 64, pixels = 20000;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> sample;
+  double against_reference = 0, against_truth = 0;
+  for (int p = 0; p < pixels; ++p) {
+    double first = 0, all = 0;
+    for (int i = 0; i < reference; ++i) {
+      double x = sample(rng);
+      if (i < n) first += x;
+      all += x;
+    }
+    double frame = first / n;
+    against_reference += std::pow(frame - all / reference, 2);
+    against_truth += frame * frame;
+  }
+  double measured = std::sqrt(against_reference / pixels);
+  double truth = std::sqrt(against_truth / pixels);
+  EXPECT_LT(measured, 0.9 * truth);  // uncorrected it reads sqrt(3/4) of the truth
+  EXPECT_NEAR(peer_rmse_against_truth(measured, n, reference), truth, 0.02 * truth);
+  EXPECT_DOUBLE_EQ(peer_rmse_against_truth(0.3, 1, 4), 0.3 / std::sqrt(0.75));
+  EXPECT_THROW(peer_rmse_against_truth(0.3, 4, 4), std::invalid_argument);
 }
 
 TEST(PeersBench, CachedReferenceNameCoversSizePathLengthAndSpp) {
@@ -141,6 +169,7 @@ TEST(PeersBench, TinyRunAgainstTheRealPathtracer) {
   ASSERT_GE(r.embree.size(), 2u);
   for (size_t i = 0; i < r.embree.size(); ++i) {
     EXPECT_EQ(r.embree[i].spp, 1 << i);
+    EXPECT_LE(r.embree[i].spp, o.reference_spp / 2);  // a frame at 64 spp would be the reference
     EXPECT_GT(r.embree[i].frame_ms, 0);
   }
   EXPECT_LT(r.embree.back().rmse, r.embree.front().rmse);
