@@ -259,10 +259,8 @@ void intersect_batch_packets(const TraversalContext& ctx, const Kernels& single,
 }  // namespace
 
 IntersectBatchKernel select_coherent_batch_kernel(const TreeShape& shape) {
-  if (shape.compact || shape.robust) return nullptr;
-  if (shape.width == 8) return &intersect_batch_packets<8>;
-  if (shape.width == 4) return &intersect_batch_packets<4>;
-  return nullptr;
+  return batch_kernel_for<IntersectBatchKernel>(shape, &intersect_batch_packets<8>,
+                                                &intersect_batch_packets<4>);
 }
 
 }  // namespace tuneray::bvh

@@ -70,7 +70,10 @@ uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, ui
         if (hit) entered.add(hit, 1u << i);
       }
       int children = entered.children;
-      if (!children) goto next;
+      if (!children) {  // no ray goes on below this node: no leaf to test
+        rays = 0;
+        break;
+      }
       // Any hit ends a ray's query, so children go in slot order, as in the single-ray kernel.
       const int first = __builtin_ctz(children);
       children &= children - 1;
@@ -89,7 +92,6 @@ uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, ui
       if (intersect_fast_leaf<false, true>(cur, ray[i], tfar, nullptr)) blocked |= 1u << i;
     }
     if (blocked == live) break;
-  next:;
   }
   return blocked;
 }
@@ -123,10 +125,8 @@ void occluded_batch_stream(const TraversalContext& ctx, const Ray* rays, size_t 
 }  // namespace
 
 OccludedBatchKernel select_occluded_batch_kernel(const TreeShape& shape) {
-  if (shape.compact || shape.robust) return nullptr;
-  if (shape.width == 8) return &occluded_batch_stream<8>;
-  if (shape.width == 4) return &occluded_batch_stream<4>;
-  return nullptr;
+  return batch_kernel_for<OccludedBatchKernel>(shape, &occluded_batch_stream<8>,
+                                               &occluded_batch_stream<4>);
 }
 
 }  // namespace tuneray::bvh

@@ -398,4 +398,14 @@ void for_each_octant_group(const Ray* rays, size_t count, int size, int min_size
   }
 }
 
+// The batch kernels (packets, streams) exist for the 4- and 8-wide fast, non-robust layouts only:
+// the kernel of this tree's width, or nullptr, where the caller loops over single rays.
+template <class Kernel>
+Kernel batch_kernel_for(const TreeShape& shape, Kernel width8, Kernel width4) {
+  if (shape.compact || shape.robust) return nullptr;
+  if (shape.width == 8) return width8;
+  if (shape.width == 4) return width4;
+  return nullptr;
+}
+
 }  // namespace tuneray::bvh::detail
