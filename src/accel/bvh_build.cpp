@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 
+#include "accel/bvh_node_box.h"
 #include "math/bbox.h"
 #include "scene/scene.h"
 
@@ -34,24 +35,11 @@ Vec3f vertex(const GeometryView& g, uint32_t tri, int k) {
 
 template <int N, bool kCompact>
 struct Callbacks {
-  using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
+  using Node = NodeOf<N, kCompact>;
 
   static void* create_node(RTCThreadLocalAllocator alloc, unsigned int, void*) {
     auto* node = static_cast<Node*>(rtcThreadLocalAlloc(alloc, sizeof(Node), kCacheLine));
-    if constexpr (kCompact) {
-      std::memset(node, 0, sizeof(Node));
-      for (int i = 0; i < N; ++i) {
-        for (int a = 0; a < 3; ++a) node->q[a][i] = 255;  // lo > hi: empty
-      }
-    } else {
-      for (int i = 0; i < N; ++i) {
-        for (int a = 0; a < 3; ++a) {
-          node->bounds[a][i] = std::numeric_limits<float>::infinity();
-          node->bounds[a + 3][i] = -std::numeric_limits<float>::infinity();
-        }
-        node->child[i] = kEmptyRef;
-      }
-    }
+    clear_node<N, kCompact>(*node);
     return node;
   }
 
@@ -62,52 +50,13 @@ struct Callbacks {
   }
 
   static void set_bounds(void* node_ptr, const RTCBounds** bounds, unsigned int count, void*) {
-    auto* node = static_cast<Node*>(node_ptr);
-    if constexpr (kCompact) {
-      float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-      for (unsigned int i = 0; i < count; ++i) {
-        const float* b = &bounds[i]->lower_x;  // lower_x, y, z, align0, upper_x, y, z, align1
-        for (int a = 0; a < 3; ++a) {
-          lo[a] = std::min(lo[a], b[a]);
-          hi[a] = std::max(hi[a], b[a + 4]);
-        }
-      }
-      for (int a = 0; a < 3; ++a) {
-        float origin = lo[a];
-        float scale = (hi[a] - lo[a]) / 255.0f;
-        while (dequantize(origin, scale, 255) < hi[a])
-          scale = std::nextafter(scale, std::numeric_limits<float>::infinity());
-        node->origin[a] = origin;
-        node->scale[a] = scale;
-        for (unsigned int i = 0; i < count; ++i) {
-          const float* b = &bounds[i]->lower_x;
-          node->q[a][i] = quantize_down(origin, scale, b[a]);
-          node->q[a + 3][i] = quantize_up(origin, scale, b[a + 4]);
-        }
-      }
-    } else {
-      for (unsigned int i = 0; i < count; ++i) {
-        const float* b = &bounds[i]->lower_x;
-        for (int a = 0; a < 3; ++a) {
-          node->bounds[a][i] = b[a];
-          node->bounds[a + 3][i] = b[a + 4];
-        }
-      }
+    BBox boxes[N];
+    for (unsigned int i = 0; i < count; ++i) {
+      const float* b = &bounds[i]->lower_x;  // lower_x, y, z, align0, upper_x, y, z, align1
+      boxes[i].lo = Vec3f(b[0], b[1], b[2]);
+      boxes[i].hi = Vec3f(b[4], b[5], b[6]);
     }
-  }
-
-  // Largest q whose dequantized value is <= value (so the box only grows).
-  static uint8_t quantize_down(float origin, float scale, float value) {
-    if (!(scale > 0.0f)) return 0;
-    int q = std::clamp(static_cast<int>(std::floor((value - origin) / scale)), 0, 255);
-    while (q > 0 && dequantize(origin, scale, static_cast<uint8_t>(q)) > value) --q;
-    return static_cast<uint8_t>(q);
-  }
-  static uint8_t quantize_up(float origin, float scale, float value) {
-    if (!(scale > 0.0f)) return 0;
-    int q = std::clamp(static_cast<int>(std::ceil((value - origin) / scale)), 0, 255);
-    while (q < 255 && dequantize(origin, scale, static_cast<uint8_t>(q)) < value) ++q;
-    return static_cast<uint8_t>(q);
+    set_child_boxes<N, kCompact>(*static_cast<Node*>(node_ptr), boxes, static_cast<int>(count));
   }
 
   static void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims,

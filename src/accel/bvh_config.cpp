@@ -90,7 +90,8 @@ std::string bvh_config_ranges() {
          "  cost_ratio=[0.05,20] (sets trav_cost=ratio, int_cost=1)\n"
          "  static=0|1 (default 0)\n"
          "  compact=0|1 (default 0)\n"
-         "  robust=0|1 (default 0)";
+         "  robust=0|1 (default 0)\n"
+         "  collapse=0|1 (default 1; branching 2 or 4 stored as 8-wide nodes)";
 }
 
 void BvhConfig::set_cost_ratio(float ratio) {
@@ -129,7 +130,7 @@ std::string BvhConfig::to_string() const {
          ",min_leaf=" + std::to_string(min_leaf) + ",max_leaf=" + std::to_string(max_leaf) +
          ",trav_cost=" + format_float(trav_cost) + ",int_cost=" + format_float(int_cost) +
          ",static=" + (is_static ? "1" : "0") + ",compact=" + (compact ? "1" : "0") +
-         ",robust=" + (robust ? "1" : "0");
+         ",robust=" + (robust ? "1" : "0") + ",collapse=" + (collapse ? "1" : "0");
 }
 
 BvhConfig parse_bvh_config(const std::string& text) {
@@ -178,6 +179,8 @@ BvhConfig parse_bvh_config(const std::string& text) {
       c.compact = parse_flag(key, value);
     } else if (key == "robust") {
       c.robust = parse_flag(key, value);
+    } else if (key == "collapse") {
+      c.collapse = parse_flag(key, value);
     } else {
       reject("unknown parameter '" + key + "'");
     }

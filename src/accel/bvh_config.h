@@ -1,5 +1,5 @@
-// The 11 build parameters of the tuned BVH (DESIGN §3), defaults = Embree's recommended
-// rtcDefaultBuildArguments. A plain struct so the tuner can fill it directly.
+// The 11 build parameters and our 4 switches of the tuned BVH (DESIGN §3), defaults = Embree's
+// recommended rtcDefaultBuildArguments. A plain struct so the tuner can fill it directly.
 #pragma once
 
 #include <string>
@@ -23,6 +23,13 @@ struct BvhConfig {
   bool is_static = false;  // true: nodes and leaves re-laid out depth-first in one allocation
   bool compact = false;    // true: quantized child boxes + triangle indices
   bool robust = false;     // true: watertight triangle test + conservative box test
+  // true: a branching-2 or -4 tree is collapsed into 8-wide nodes after the build
+  // (accel/bvh_collapse.h); no effect at branching 8.
+  bool collapse = true;
+
+  static constexpr int kCollapsedWidth = 8;
+  // Whether the build's tree is collapsed (collapse on and fewer than 8 children a node).
+  bool collapses() const { return collapse && branching < kCollapsedWidth; }
 
   float cost_ratio() const { return trav_cost / int_cost; }
   // Sets trav_cost = ratio, int_cost = 1; the ratio is clamped to [1/20, 20] so both costs stay
@@ -41,7 +48,8 @@ struct BvhConfig {
 };
 
 // Parses any subset of the parameters from `key=value,...` (keys: quality, branching, max_depth,
-// sah_block_size, min_leaf, max_leaf, trav_cost, int_cost, cost_ratio, static, compact, robust)
+// sah_block_size, min_leaf, max_leaf, trav_cost, int_cost, cost_ratio, static, compact, robust,
+// collapse)
 // on top of the defaults, then validates. Throws std::invalid_argument listing the valid ranges.
 BvhConfig parse_bvh_config(const std::string& text);
 

@@ -12,6 +12,11 @@ namespace tuneray::bvh {
 // Nodes and leaves start on a cache line: a 256-byte 8-wide node then spans 4 lines, not 5.
 inline constexpr size_t kCacheLine = 64;
 
+// Bytes a block takes in a contiguous layout where every block starts on a cache line.
+inline constexpr size_t whole_lines(size_t bytes) {
+  return (bytes + kCacheLine - 1) / kCacheLine * kCacheLine;
+}
+
 using NodeRef = uintptr_t;
 inline constexpr NodeRef kLeafTag = 1;
 inline constexpr NodeRef kEmptyRef = 0;

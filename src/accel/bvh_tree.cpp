@@ -20,6 +20,11 @@ void Tree::adopt_buffer(void* buffer, size_t bytes, NodeRef root) {
   root_ = root;
 }
 
+void Tree::adopt_buffer(void* buffer, size_t bytes, NodeRef root, TreeShape shape) {
+  adopt_buffer(buffer, bytes, root);
+  shape_ = shape;
+}
+
 void Tree::reset() {
   if (handle_) rtcReleaseBVH(handle_);
   if (buffer_) std::free(buffer_);

@@ -28,6 +28,8 @@ class Tree {
   // Takes ownership of a buffer from aligned_alloc holding the nodes of `root`; releases the
   // Embree handle (the nodes it held are no longer referenced).
   void adopt_buffer(void* buffer, size_t bytes, NodeRef root);
+  // The same for nodes of another shape than the tree had (the collapse to 8-wide nodes).
+  void adopt_buffer(void* buffer, size_t bytes, NodeRef root, TreeShape shape);
   void reset();
 
   NodeRef root() const { return root_; }

@@ -5,33 +5,18 @@
 #include <cstring>
 #include <type_traits>
 
+#include "accel/bvh_node_box.h"
 #include "math/bbox.h"
 
 namespace tuneray::bvh {
 
 namespace {
 
-inline size_t round_up(size_t x, size_t a) {
-  return (x + a - 1) / a * a;
-}
-
 template <int N, bool kCompact>
 struct Walker {
-  using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
+  using Node = NodeOf<N, kCompact>;
 
-  static BBox child_box(const Node& n, int i) {
-    BBox b;
-    for (int a = 0; a < 3; ++a) {
-      if constexpr (kCompact) {
-        b.lo[a] = dequantize(n.origin[a], n.scale[a], n.q[a][i]);
-        b.hi[a] = dequantize(n.origin[a], n.scale[a], n.q[a + 3][i]);
-      } else {
-        b.lo[a] = n.bounds[a][i];
-        b.hi[a] = n.bounds[a + 3][i];
-      }
-    }
-    return b;
-  }
+  static BBox child_box(const Node& n, int i) { return bvh::child_box<N, kCompact>(n, i); }
 
   static BBox node_box(const Node& n) {
     BBox box;
@@ -77,8 +62,8 @@ struct Walker {
   }
 
   static size_t block_bytes(NodeRef ref) {
-    if (is_leaf(ref)) return round_up(leaf_bytes(ref_ptr<LeafHeader>(ref), kCompact), kCacheLine);
-    return round_up(sizeof(Node), kCacheLine);
+    if (is_leaf(ref)) return whole_lines(leaf_bytes(ref_ptr<LeafHeader>(ref), kCompact));
+    return whole_lines(sizeof(Node));
   }
 
   static size_t total_bytes(NodeRef ref) {
@@ -126,7 +111,7 @@ struct Walker {
     NodeRef root = tree.root();
     if (root == kEmptyRef || tree.relaid_out()) return;
     size_t bytes = total_bytes(root);
-    char* buffer = static_cast<char*>(std::aligned_alloc(64, round_up(bytes, 64)));
+    char* buffer = static_cast<char*>(std::aligned_alloc(kCacheLine, whole_lines(bytes)));
     if (!buffer) throw std::bad_alloc();
     size_t offset = 0;
     NodeRef new_root = copy(root, buffer, offset);

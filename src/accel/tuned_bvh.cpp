@@ -3,6 +3,7 @@
 #include <chrono>
 #include <utility>
 
+#include "accel/bvh_collapse.h"
 #include "accel/bvh_stream.h"
 #include "accel/bvh_walk.h"
 
@@ -26,7 +27,10 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   bvh::BuildResult result;
   try {
     result = bvh::build_tree(geometry, config_, *device_, primitives_, *next);
-    if (config_.is_static) bvh::relayout_depth_first(*next);
+    if (config_.collapses())
+      bvh::collapse_to_wide(*next);
+    else if (config_.is_static)
+      bvh::relayout_depth_first(*next);
   } catch (...) {
     tree_.reset();
     context_ = {};

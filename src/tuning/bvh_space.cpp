@@ -64,7 +64,11 @@ tuner::Space make_backend_space() {
   space.add_enum("backend", {"tuned", "native"}, "tuned")
       .add_enum("native_quality", {"low", "medium", "high"}, "medium");
   space.add_condition("native_quality", tuner::Space::when_enum_not("backend", {"tuned"}));
-  add_bvh_params(space, tuner::Space::when_enum_not("backend", {"native"}));
+  const Predicate tuned = tuner::Space::when_enum_not("backend", {"native"});
+  add_bvh_params(space, tuned);
+  space.add_bool("collapse", true).add_condition("collapse", [tuned](const tuner::Config& c) {
+    return tuned(c) && c.get_int("branching") < BvhConfig::kCollapsedWidth;
+  });
   return space;
 }
 
@@ -80,6 +84,10 @@ BvhConfig to_bvh_config(const tuner::Config& c) {
   b.is_static = c.get_bool("static");
   b.compact = c.get_bool("compact");
   b.robust = c.get_bool("robust");
+  // The BVH-only space predates the collapse: its 2- and 4-wide trees were traversed as built
+  // (at branching 8 the switch means nothing and keeps its default).
+  b.collapse =
+      has_param(c, "collapse") ? c.get_bool("collapse") : b.branching >= BvhConfig::kCollapsedWidth;
   return b;
 }
 
@@ -95,6 +103,10 @@ tuner::Config to_tuner_config(const tuner::Space& space, const BvhConfig& b) {
       .set_bool("static", b.is_static)
       .set_bool("compact", b.compact)
       .set_bool("robust", b.robust);
+  if (has_param(c, "collapse"))
+    c.set_bool("collapse", b.collapse);
+  else if (b.collapses())
+    throw std::invalid_argument("collapse=1 is not part of this search space");
   if (has_param(c, "backend")) c.set_enum("backend", "tuned");
   return space.canonical(c);
 }

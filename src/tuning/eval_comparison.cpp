@@ -59,11 +59,11 @@ const std::string& EvalComparison::fastest() const {
   return configs[best];
 }
 
-std::vector<std::string> comparison_configs(const std::string& converged,
+std::vector<std::string> comparison_configs(const std::string& default_config,
+                                            const std::string& converged,
                                             const std::string& best_sample,
                                             const std::vector<std::string>& predicted) {
-  std::vector<std::string> configs = {AccelChoice::tuned(BvhConfig{}).to_string(),
-                                      AccelChoice::native().to_string()};
+  std::vector<std::string> configs = {default_config, AccelChoice::native().to_string()};
   auto add = [&](const std::string& config) {
     if (std::find(configs.begin(), configs.end(), config) == configs.end())
       configs.push_back(config);

@@ -46,9 +46,10 @@ struct EvalComparison {
 };
 
 // What one camera compares, in measuring order and each configuration once: the default
-// configuration, native Embree, then `converged`, `best_sample` and `predicted` (AccelChoice
-// texts).
-std::vector<std::string> comparison_configs(const std::string& converged,
+// configuration (the search space's), native Embree, then `converged`, `best_sample` and
+// `predicted` (AccelChoice texts).
+std::vector<std::string> comparison_configs(const std::string& default_config,
+                                            const std::string& converged,
                                             const std::string& best_sample,
                                             const std::vector<std::string>& predicted);
 

@@ -85,8 +85,7 @@ SearchOutcome search_outcome(const std::vector<tuner::StoredSample>& samples,
 }
 
 // The camera's costs and ratios, all from its comparison.
-void add_comparison(CameraRecord& r, const EvalComparison& c) {
-  const std::string default_config = AccelChoice::tuned(BvhConfig{}).to_string();
+void add_comparison(CameraRecord& r, const EvalComparison& c, const std::string& default_config) {
   const std::string native_config = AccelChoice::native().to_string();
   r.default_ms = c.cost_ms(default_config);
   if (r.search_default_ms > 0) r.search_window_load = r.search_default_ms / r.default_ms;
@@ -246,6 +245,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
   EvalResults results;
   results.profile = p;
   const tuner::Space space = eval_space(p);
+  const std::string default_config = to_accel_choice(space.default_config()).to_string();
   const tuner::IndicatorSchema schema = make_indicator_schema();
 
   for (size_t si = 0; si < p.scenes.size(); ++si) {
@@ -327,8 +327,8 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
       for (size_t ci = 0; ci < n_cameras; ++ci) {
         const int camera = static_cast<int>(ci);
         CameraRecord& r = records[ci];
-        const std::vector<std::string> configs =
-            comparison_configs(r.converged_config, searches[ci].best_sample, predicted[ci]);
+        const std::vector<std::string> configs = comparison_configs(
+            default_config, r.converged_config, searches[ci].best_sample, predicted[ci]);
         if (auto stored = comparison_log.find(camera, configs)) {
           comparisons[ci] = *stored;
         } else if (o.plan) {
@@ -340,7 +340,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
               camera,
               measure_comparison(*costs, objective, camera, configs, comparison_options(p)));
         }
-        add_comparison(r, comparisons[ci]);
+        add_comparison(r, comparisons[ci], default_config);
         if (log) log(comparison_line(r, p));
       }
       if (!compared_all) continue;

@@ -79,7 +79,7 @@ TuneReport run_tune_session(const TuneOptions& o,
   };
 
   FrameBench bench(scene, settings, o.spp, o.objective);
-  const AccelChoice default_choice = AccelChoice::tuned(BvhConfig{});
+  const AccelChoice default_choice = to_accel_choice(space.default_config());
   const AccelChoice native_choice = AccelChoice::native();
   const WorkSizes default_work = work_of(space.default_config());
   // Warm-up: threads, caches, page faults, both backends' first trees (not counted).

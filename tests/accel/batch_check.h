@@ -24,6 +24,8 @@ inline const char* const kBatchKernelConfigs[] = {
     "branching=8,compact=1",
     "branching=8,robust=1",
     "branching=4,robust=1",
+    "branching=2,collapse=1",
+    "branching=4,max_leaf=4,collapse=1",
 };
 
 // Every ray of the batch must get the hit the single-ray call gives, bit for bit (triangle, t,

@@ -1,5 +1,5 @@
 // A sample of configurations covering every quality, every branching factor, compact on/off,
-// robust on/off, static on/off, extreme leaf sizes and cost ratios.
+// robust on/off, static on/off, collapse on/off, extreme leaf sizes and cost ratios.
 #pragma once
 
 #include <string>
@@ -25,6 +25,9 @@ inline std::vector<std::string> sampled_configs() {
       "branching=8,cost_ratio=20",
       "branching=8,cost_ratio=0.05,max_depth=64",
       "branching=2,compact=1,min_leaf=4",
+      "branching=2,collapse=1",
+      "quality=high,branching=4,collapse=1,static=1",
+      "branching=2,compact=1,robust=1,collapse=1",
   };
 }
 

@@ -18,17 +18,18 @@ namespace {
 
 const char* const kBvhParams[] = {"quality",  "branching", "max_depth",  "sah_block_size",
                                   "min_leaf", "max_leaf",  "cost_ratio", "static",
-                                  "compact",  "robust"};
+                                  "compact",  "robust",    "collapse"};
 
 TEST(BackendSpace, BackendAndNativeQualityComeFirst) {
   tuner::Space space = make_backend_space();
   tuner::Space bvh = make_bvh_space();
-  ASSERT_EQ(space.size(), bvh.size() + 2);
+  ASSERT_EQ(space.size(), bvh.size() + 3);
   EXPECT_EQ(space.param(0).name, "backend");
   EXPECT_EQ(space.param(0).labels, (std::vector<std::string>{"tuned", "native"}));
   EXPECT_EQ(space.param(1).name, "native_quality");
   EXPECT_EQ(space.param(1).labels, (std::vector<std::string>{"low", "medium", "high"}));
   for (size_t i = 0; i < bvh.size(); ++i) EXPECT_EQ(space.param(i + 2).name, bvh.param(i).name);
+  EXPECT_EQ(space.param(space.size() - 1).name, "collapse");
   // The default stays the study's: Embree's recommended build of our tree.
   EXPECT_EQ(to_accel_choice(space.default_config()), AccelChoice::tuned(BvhConfig{}));
   EXPECT_EQ(space.default_config().get_enum("native_quality"), "medium");
@@ -73,9 +74,25 @@ TEST(BackendSpace, ChoicesRoundTrip) {
             testing::every_parameter_changed().to_string());
 }
 
+TEST(BackendSpace, CollapseCountsOnlyForTwoAndFourWideTrees) {
+  tuner::Space space = make_backend_space();
+  EXPECT_TRUE(space.default_config().get_bool("collapse"));
+  EXPECT_NE(space.parse("collapse=false"), space.default_config());
+  EXPECT_NE(space.parse("branching=4,collapse=false"), space.parse("branching=4"));
+  EXPECT_EQ(space.parse("branching=8,collapse=false"), space.parse("branching=8"));
+  EXPECT_EQ(space.parse("backend=native,collapse=false"), space.parse("backend=native"));
+  BvhConfig narrow;
+  narrow.branching = 4;
+  narrow.collapse = false;
+  EXPECT_EQ(to_bvh_config(to_tuner_config(space, narrow)), narrow);
+  EXPECT_TRUE(to_bvh_config(space.default_config()).collapses());
+}
+
 TEST(BackendSpace, TheBvhOnlySpaceHasNoNativeChoice) {
   tuner::Space bvh = make_bvh_space();
-  EXPECT_EQ(to_accel_choice(bvh.default_config()), AccelChoice::tuned(BvhConfig{}));
+  EXPECT_EQ(to_accel_choice(bvh.default_config()),
+            AccelChoice::tuned(testing::bvh_only_defaults()));
+  EXPECT_THROW(to_tuner_config(bvh, BvhConfig{}), std::invalid_argument);
   EXPECT_EQ(
       to_accel_choice(to_tuner_config(bvh, AccelChoice::tuned(testing::every_parameter_changed())))
           .bvh,

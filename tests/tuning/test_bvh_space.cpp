@@ -13,7 +13,7 @@ namespace {
 TEST(BvhSpace, DefaultsAreEmbreesRecommendedOnes) {
   tuner::Space space = make_bvh_space();
   EXPECT_EQ(space.size(), 10u);  // 11 parameters, the two costs folded into one ratio
-  EXPECT_EQ(to_bvh_config(space.default_config()), BvhConfig{});
+  EXPECT_EQ(to_bvh_config(space.default_config()), testing::bvh_only_defaults());
 }
 
 TEST(BvhSpace, RoundTripsEveryParameter) {
@@ -25,7 +25,7 @@ TEST(BvhSpace, RoundTripsEveryParameter) {
 
 TEST(BvhSpace, MortonIgnoresSahParametersSoTheyCollapse) {
   tuner::Space space = make_bvh_space();
-  BvhConfig a, b;
+  BvhConfig a = testing::bvh_only_defaults(), b = a;
   a.quality = b.quality = BvhQuality::kLow;
   a.sah_block_size = 8;
   a.max_leaf = 4;

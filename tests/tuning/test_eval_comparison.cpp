@@ -43,10 +43,11 @@ InterleavedOptions options(int min_rounds, int max_rounds) {
 }
 
 TEST(ComparisonConfigs, DefaultAndNativeFirstThenEveryOtherRoleOnce) {
-  EXPECT_EQ(comparison_configs(tuned(8, 4), tuned(8, 4), {tuned(4, 2), kDefault, tuned(4, 2)}),
-            (std::vector<std::string>{kDefault, kNative, tuned(8, 4), tuned(4, 2)}));
+  EXPECT_EQ(
+      comparison_configs(kDefault, tuned(8, 4), tuned(8, 4), {tuned(4, 2), kDefault, tuned(4, 2)}),
+      (std::vector<std::string>{kDefault, kNative, tuned(8, 4), tuned(4, 2)}));
   // A search that converged to native Embree adds nothing for it.
-  EXPECT_EQ(comparison_configs(kNative, tuned(8, 4), {}),
+  EXPECT_EQ(comparison_configs(kDefault, kNative, tuned(8, 4), {}),
             (std::vector<std::string>{kDefault, kNative, tuned(8, 4)}));
 }
 
@@ -117,7 +118,7 @@ TEST(EvalComparison, AComparisonStoppedAtThreeRoundsByTheEarlierRuleIsStillRead)
 
 TEST(EvalComparison, ALoadChangeBetweenRoundsHitsEveryCandidateAlike) {
   const std::vector<std::string> configs =
-      comparison_configs(tuned(8, 4), tuned(4, 8), {tuned(8, 16)});
+      comparison_configs(kDefault, tuned(8, 4), tuned(4, 8), {tuned(8, 16)});
   MachineLoad load;
   // The warm-up, then each round: a machine getting busy.
   load.load = {1.0, 1.2, 1.5, 3.0, 4.0, 4.5, 5.0};
@@ -159,7 +160,8 @@ TEST(EvalComparison, TheUntimedFirstFramesAreNotCounted) {
   MachineLoad load;
   load.load = {50.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  // the warm-up is very slow (cold trees)
   LoadedMachine machine("cornell", Objective::kRender, load);
-  const std::vector<std::string> configs = comparison_configs(tuned(8, 4), tuned(8, 4), {});
+  const std::vector<std::string> configs =
+      comparison_configs(kDefault, tuned(8, 4), tuned(8, 4), {});
   const EvalComparison c =
       measure_comparison(machine, Objective::kRender, 0, configs, options(6, 30));
   ASSERT_EQ(c.rounds(), 6);
@@ -181,8 +183,9 @@ TEST(EvalComparison, NoisyRoundsGoOnToTheCapAndSaySo) {
    private:
     int native_frames_ = 0;
   } jittery;
-  const EvalComparison c = measure_comparison(
-      jittery, Objective::kRender, 1, comparison_configs(tuned(8, 4), kDefault, {}), options(3, 7));
+  const EvalComparison c =
+      measure_comparison(jittery, Objective::kRender, 1,
+                         comparison_configs(kDefault, tuned(8, 4), kDefault, {}), options(3, 7));
   EXPECT_EQ(c.rounds(), 7);
   EXPECT_FALSE(c.within_target);
   const RatioInterval native_over_default = c.ratio(kNative, kDefault);
@@ -202,8 +205,8 @@ TEST(EvalComparison, ARefusedBuildNamesTheConfiguration) {
     }
   } refusing;
   try {
-    measure_comparison(refusing, Objective::kRender, 3, comparison_configs(kDefault, kDefault, {}),
-                       options(3, 30));
+    measure_comparison(refusing, Objective::kRender, 3,
+                       comparison_configs(kDefault, kDefault, kDefault, {}), options(3, 30));
     FAIL() << "a refused build was compared";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(kNative), std::string::npos) << e.what();

@@ -14,6 +14,7 @@
 #include "tuning/eval_search.h"
 #include "tuning/eval_study.h"
 #include "tuning/line_log.h"
+#include "tuning_fixtures.h"
 
 namespace tuneray {
 namespace {
@@ -92,15 +93,16 @@ TEST_F(EvalStudyComparisons, ALoadChangingFromRoundToRoundMovesNoRatio) {
     // The yardstick measured in both windows says so: the searches ran unloaded, so the search
     // window was 1 / 1.5 as loaded as the comparison's (and exactly as loaded when quiet).
     const double default_frame =
-        synthetic_ms(AccelChoice::tuned(BvhConfig{}).to_string(), q.camera);
+        synthetic_ms(AccelChoice::tuned(testing::bvh_only_defaults()).to_string(), q.camera);
     EXPECT_DOUBLE_EQ(q.search_default_ms, default_frame);
     EXPECT_DOUBLE_EQ(l.search_default_ms, default_frame);
     EXPECT_NEAR(q.search_window_load, 1.0, 1e-12);
     EXPECT_NEAR(l.search_window_load, 1 / 1.5, 1e-12);
-    EXPECT_NEAR(q.search_speedup.ratio,
-                synthetic_ms(AccelChoice::tuned(BvhConfig{}).to_string(), q.camera) /
-                    synthetic_ms(q.converged_config, q.camera),
-                1e-12);
+    EXPECT_NEAR(
+        q.search_speedup.ratio,
+        synthetic_ms(AccelChoice::tuned(testing::bvh_only_defaults()).to_string(), q.camera) /
+            synthetic_ms(q.converged_config, q.camera),
+        1e-12);
   }
   ASSERT_EQ(loaded.predictions.size(), quiet.predictions.size());
   ASSERT_FALSE(quiet.predictions.empty());

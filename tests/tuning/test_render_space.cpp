@@ -7,6 +7,7 @@
 
 #include "tuning/bvh_space.h"
 #include "tuning/render_space.h"
+#include "tuning_fixtures.h"
 
 namespace tuneray {
 namespace {
@@ -35,7 +36,7 @@ TEST(RenderSpace, DefaultsFollowTheRenderSettings) {
   RenderSettings tiles;
   tiles.quality.wavefront = false;
   tuner::Space space = make_render_space(tiles);
-  EXPECT_EQ(to_bvh_config(space.default_config()), BvhConfig{});
+  EXPECT_EQ(to_bvh_config(space.default_config()), testing::bvh_only_defaults());
   EXPECT_EQ(to_work_sizes(space.default_config()), WorkSizes::of(tiles));
   EXPECT_EQ(space.default_config().get_enum("scheduler"), "tile");
 

@@ -9,6 +9,14 @@
 
 namespace tuneray::testing {
 
+// The default of the BVH-only space (make_bvh_space): Embree's recommended parameters, trees
+// traversed as built (that space has no collapse switch).
+inline BvhConfig bvh_only_defaults() {
+  BvhConfig b;
+  b.collapse = false;
+  return b;
+}
+
 inline BvhConfig every_parameter_changed() {
   BvhConfig b;
   b.quality = BvhQuality::kHigh;

@@ -1,0 +1,24 @@
+// `collapse=1`: a tree built with branching 2 or 4 is stored and traversed as an 8-wide tree.
+//
+// Embree's builder with branching 8 and the same other parameters makes a different tree: it
+// stops at smaller leaves (conference, Embree's defaults: 1.25 triangles a leaf at branching 8,
+// 2.4 at branching 2), and our leaves test triangles in packs of 4. Collapsing the binary tree
+// keeps its fuller leaves and gives the traversal 8-wide nodes.
+#pragma once
+
+#include "accel/bvh_config.h"
+#include "accel/bvh_tree.h"
+
+namespace tuneray::bvh {
+
+inline constexpr int kCollapsedWidth = BvhConfig::kCollapsedWidth;
+
+// Merges inner nodes into 8-wide nodes, greedily: of the children of a node under construction,
+// the inner child with the largest surface area whose children still fit is replaced by them,
+// until none fits (the rule Embree's own wide builders split by). Nodes and leaves are then laid
+// out depth-first in one allocation, as relayout_depth_first does, and the tree's shape becomes
+// 8 wide. Leaves are copied unchanged, so every ray finds the same triangles. A tree already 8
+// wide, or a lone leaf, is only re-laid out.
+void collapse_to_wide(Tree& tree);
+
+}  // namespace tuneray::bvh

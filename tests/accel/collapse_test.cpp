@@ -1,0 +1,197 @@
+// collapse=1: the 8-wide tree made from a 2- or 4-wide build holds the same leaves, its nodes
+// are as full as the greedy rule allows, its boxes still contain what lies below them, and rays
+// find exactly what the uncollapsed tree finds.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "accel/bvh_build.h"
+#include "accel/bvh_collapse.h"
+#include "accel/bvh_node_box.h"
+#include "accel/bvh_walk.h"
+#include "accel/tuned_bvh.h"
+#include "test_geometry.h"
+
+namespace tuneray::test {
+namespace {
+
+struct Built {
+  bvh::Tree tree;
+  bvh::PrimitiveCache cache;
+};
+
+void build(const Mesh& mesh, const std::string& text, Built& out) {
+  bvh::build_tree(mesh.view(), parse_bvh_config(text), *EmbreeDevice::shared(), out.cache,
+                  out.tree);
+}
+
+bool box_contains(const BBox& outer, const BBox& inner) {
+  for (int a = 0; a < 3; ++a)
+    if (inner.lo[a] < outer.lo[a] || inner.hi[a] > outer.hi[a]) return false;
+  return true;
+}
+
+// Walks an 8-wide tree and checks, node by node: no node could take in one more inner child
+// (every inner child has more children than the free slots plus the one it would free), and
+// every child box contains the boxes of its own children, down to the triangles of the leaves.
+template <bool kCompact>
+struct WideCheck {
+  using Node = bvh::NodeOf<8, kCompact>;
+  const Mesh& mesh;
+  size_t nodes = 0, leaves = 0, references = 0, not_maximal = 0, not_containing = 0;
+
+  BBox leaf_box(bvh::NodeRef ref) {
+    const auto* leaf = bvh::ref_ptr<bvh::LeafHeader>(ref);
+    BBox box;
+    if constexpr (kCompact) {
+      const uint32_t* ids = bvh::leaf_payload<uint32_t>(leaf);
+      for (uint32_t i = 0; i < leaf->prim_count; ++i)
+        for (uint32_t v : mesh.triangles[ids[i]].v) box.extend(mesh.positions[v]);
+    } else {
+      const auto* packs = bvh::leaf_payload<bvh::TriPack4>(leaf);
+      for (uint32_t i = 0; i < leaf->prim_count; ++i)
+        for (uint32_t v : mesh.triangles[packs[i / 4].prim[i % 4]].v) box.extend(mesh.positions[v]);
+    }
+    return box;
+  }
+
+  // Returns the box of everything below `ref`.
+  BBox visit(bvh::NodeRef ref) {
+    if (bvh::is_leaf(ref)) {
+      ++leaves;
+      references += bvh::ref_ptr<bvh::LeafHeader>(ref)->prim_count;
+      return leaf_box(ref);
+    }
+    ++nodes;
+    const Node& n = *bvh::ref_ptr<Node>(ref);
+    const int count = bvh::child_count<8, kCompact>(n);
+    BBox all;
+    for (int i = 0; i < 8; ++i) {
+      if (n.child[i] == bvh::kEmptyRef) continue;
+      if (!bvh::is_leaf(n.child[i])) {
+        const int grandchildren = bvh::child_count<8, kCompact>(*bvh::ref_ptr<Node>(n.child[i]));
+        // The source node it grew from had at most `grandchildren` children: had those fitted,
+        // the greedy rule would have opened it.
+        if (count - 1 + grandchildren <= 8) ++not_maximal;
+      }
+      BBox below = visit(n.child[i]);
+      if (!box_contains(bvh::child_box<8, kCompact>(n, i), below)) ++not_containing;
+      all.extend(below);
+    }
+    return all;
+  }
+};
+
+class Collapse : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { mesh_ = new Mesh(make_soup(20000, 33)); }
+  static void TearDownTestSuite() { delete mesh_; }
+  static Mesh* mesh_;
+};
+Mesh* Collapse::mesh_ = nullptr;
+
+TEST_F(Collapse, KeepsEveryLeafAndFillsTheNodesGreedily) {
+  // Without spatial splits, so that every leaf's triangles lie inside the boxes above it.
+  for (const char* text : {"branching=2", "branching=4", "branching=2,compact=1",
+                           "branching=4,compact=1,max_leaf=4"}) {
+    SCOPED_TRACE(text);
+    Built source, collapsed;
+    build(*mesh_, text, source);
+    build(*mesh_, text, collapsed);
+    const bvh::TreeStats before = bvh::measure_tree(source.tree, 1.0, 1.0);
+    bvh::collapse_to_wide(collapsed.tree);
+    ASSERT_EQ(collapsed.tree.shape().width, 8);
+    ASSERT_TRUE(collapsed.tree.relaid_out());
+    const bvh::TreeStats after = bvh::measure_tree(collapsed.tree, 1.0, 1.0);
+    EXPECT_EQ(after.leaf_count, before.leaf_count);
+    EXPECT_EQ(after.references, before.references);
+    EXPECT_EQ(after.leaf_code_mismatches, 0u);
+    // A wide node takes the place of several binary ones; of 4-wide nodes, two at most.
+    if (source.tree.shape().width == 2)
+      EXPECT_LT(after.node_count * 3, before.node_count);
+    else
+      EXPECT_LT(after.node_count, before.node_count);
+    EXPECT_LT(after.depth, before.depth);
+
+    const bool compact = collapsed.tree.shape().compact;
+    size_t nodes = 0, leaves = 0, not_maximal = 0, not_containing = 0;
+    if (compact) {
+      WideCheck<true> c{*mesh_};
+      c.visit(collapsed.tree.root());
+      nodes = c.nodes, leaves = c.leaves, not_maximal = c.not_maximal;
+      not_containing = c.not_containing;
+    } else {
+      WideCheck<false> c{*mesh_};
+      c.visit(collapsed.tree.root());
+      nodes = c.nodes, leaves = c.leaves, not_maximal = c.not_maximal;
+      not_containing = c.not_containing;
+    }
+    EXPECT_EQ(nodes, after.node_count);
+    EXPECT_EQ(leaves, before.leaf_count);
+    EXPECT_EQ(not_maximal, 0u);
+    EXPECT_EQ(not_containing, 0u);
+  }
+}
+
+TEST_F(Collapse, RaysFindExactlyWhatTheUncollapsedTreeFinds) {
+  std::vector<Ray> rays;
+  Pcg32 rng(7);
+  for (int i = 0; i < 4000; ++i)
+    rays.push_back(
+        Ray{random_point(rng, mesh_->bounds()), 0, random_direction(rng), 0.2f * rng.next_float()});
+  for (const char* text : {"branching=2", "branching=4,max_leaf=4", "branching=2,compact=1",
+                           "branching=2,robust=1", "branching=2,quality=high"}) {
+    SCOPED_TRACE(text);
+    TunedBvhAccel plain(parse_bvh_config(std::string(text) + ",collapse=0"));
+    TunedBvhAccel wide(parse_bvh_config(std::string(text) + ",collapse=1"));
+    plain.build(mesh_->view());
+    BuildStats stats = wide.build(mesh_->view());
+    EXPECT_LT(stats.node_count, plain.tree_stats().node_count);
+    size_t hits = 0, blocked = 0;
+    for (const Ray& ray : rays) {
+      Hit a, b;
+      const bool found_a = plain.intersect(ray, a), found_b = wide.intersect(ray, b);
+      ASSERT_EQ(found_a, found_b);
+      EXPECT_EQ(a.prim, b.prim);
+      EXPECT_EQ(a.t, b.t);
+      EXPECT_EQ(a.u, b.u);
+      EXPECT_EQ(a.v, b.v);
+      hits += found_a ? 1 : 0;
+      const bool occluded = plain.occluded(ray);
+      EXPECT_EQ(occluded, wide.occluded(ray));
+      blocked += occluded ? 1 : 0;
+    }
+    // Both answers occur (the rays end inside the soup).
+    EXPECT_GT(hits, 0u);
+    EXPECT_LT(hits, rays.size());
+    EXPECT_EQ(blocked, hits);
+  }
+}
+
+TEST_F(Collapse, HasNoEffectAtBranchingEight) {
+  TunedBvhAccel plain(parse_bvh_config("branching=8,collapse=0"));
+  TunedBvhAccel wide(parse_bvh_config("branching=8,collapse=1"));
+  BuildStats a = plain.build(mesh_->view()), b = wide.build(mesh_->view());
+  EXPECT_EQ(a.node_count, b.node_count);
+  EXPECT_EQ(a.leaf_count, b.leaf_count);
+  EXPECT_EQ(a.sah_cost, b.sah_cost);
+}
+
+TEST_F(Collapse, ATreeThatIsOneLeafStaysOneLeaf) {
+  Mesh small;
+  small.add(Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0));
+  TunedBvhAccel wide(parse_bvh_config("branching=2,collapse=1"));
+  BuildStats stats = wide.build(small.view());
+  EXPECT_EQ(stats.node_count, 0u);
+  EXPECT_EQ(stats.leaf_count, 1u);
+  Hit hit;
+  const Vec3f a = small.positions[0], b = small.positions[1], c = small.positions[2];
+  const Vec3f centre = (a + b + c) / 3.0f;
+  const Vec3f n = normalize(cross(b - a, c - a));
+  ASSERT_TRUE(wide.intersect(Ray{centre + n, 0, -n, kInf}, hit));
+  EXPECT_EQ(hit.prim, 0u);
+}
+
+}  // namespace
+}  // namespace tuneray::test
