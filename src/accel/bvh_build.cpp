@@ -18,15 +18,16 @@ namespace tuneray::bvh {
 
 namespace {
 
-// Read by every callback on every thread; written only by create_leaf (references, once per
-// leaf, on its own cache line so the reads do not miss). splitPrimitive writes nothing here: the
-// number of spatial splits is references - triangles after the build (each split Embree keeps
-// adds exactly one reference), so it needs no counter on its hot path.
+// Read by every callback on every thread; written only by create_leaf and create_node (once per
+// leaf or node, on their own cache line so the reads do not miss). splitPrimitive writes nothing
+// here: the number of spatial splits is references - triangles after the build (each split
+// Embree keeps adds exactly one reference), so it needs no counter on its hot path.
 struct BuildContext {
   const GeometryView* geometry = nullptr;
   const SplitTriangle* split_triangles = nullptr;
   bool robust = false;
   alignas(kCacheLine) std::atomic<size_t> references{0};
+  std::atomic<size_t> inner_nodes{0};
 };
 
 Vec3f vertex(const GeometryView& g, uint32_t tri, int k) {
@@ -37,7 +38,8 @@ template <int N, bool kCompact>
 struct Callbacks {
   using Node = NodeOf<N, kCompact>;
 
-  static void* create_node(RTCThreadLocalAllocator alloc, unsigned int, void*) {
+  static void* create_node(RTCThreadLocalAllocator alloc, unsigned int, void* user) {
+    static_cast<BuildContext*>(user)->inner_nodes.fetch_add(1, std::memory_order_relaxed);
     auto* node = static_cast<Node*>(rtcThreadLocalAlloc(alloc, sizeof(Node), kCacheLine));
     clear_node<N, kCompact>(*node);
     return node;
@@ -327,6 +329,7 @@ BuildResult build_tree(const GeometryView& geometry, const BvhConfig& config, Em
   }
   tree.adopt_embree(handle, reinterpret_cast<NodeRef>(root), shape);
   result.references = ctx.references.load();
+  result.inner_nodes = ctx.inner_nodes.load();
   result.spatial_splits = result.references - std::min(result.references, primitives.count());
   if (high && result.spatial_splits == 0)
     result.notes = "quality=high: Embree performed no spatial split (fell back to medium)";

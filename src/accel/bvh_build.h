@@ -66,6 +66,7 @@ class PrimitiveCache {
 struct BuildResult {
   size_t spatial_splits = 0;  // spatial splits Embree kept: each adds one reference
   size_t references = 0;      // triangle references in leaves (count + spatial_splits)
+  size_t inner_nodes = 0;     // inner nodes Embree asked for (at least the tree's)
   std::string notes;
 };
 

@@ -1,12 +1,10 @@
 #include "accel/bvh_collapse.h"
 
 #include <cstdlib>
-#include <cstring>
 #include <new>
-#include <vector>
+#include <stdexcept>
 
 #include "accel/bvh_node_box.h"
-#include "accel/bvh_walk.h"
 
 namespace tuneray::bvh {
 
@@ -20,130 +18,101 @@ class Collapser {
   using Source = NodeOf<N, kCompact>;
   using Wide = NodeOf<kWide, kCompact>;
 
-  static void run(Tree& tree) {
+  static void run(Tree& tree, size_t max_inner_nodes) {
+    // Every wide node takes the place of at least one source node, so the source's count bounds
+    // the buffer; pages past the nodes written are never touched.
+    const size_t bytes = max_inner_nodes * whole_lines(sizeof(Wide));
     Collapser c;
-    const NodeRef root = tree.root();
-    c.plan(root);
-    size_t bytes = c.nodes_.size() * whole_lines(sizeof(Wide)) + c.leaf_bytes_;
-    char* buffer = static_cast<char*>(std::aligned_alloc(kCacheLine, whole_lines(bytes)));
-    if (!buffer) throw std::bad_alloc();
-    size_t offset = 0;
-    NodeRef new_root = c.write(0, buffer, offset);
+    c.base_ = static_cast<char*>(std::aligned_alloc(kCacheLine, bytes));
+    if (!c.base_) throw std::bad_alloc();
+    c.capacity_ = max_inner_nodes;
+    NodeRef root = kEmptyRef;
+    try {
+      root = c.collapse(tree.root());
+    } catch (...) {
+      std::free(c.base_);
+      throw;
+    }
     TreeShape shape = tree.shape();
     shape.width = kWide;
-    tree.adopt_buffer(buffer, bytes, new_root, shape);
+    tree.adopt_collapsed(c.base_, c.used_ * whole_lines(sizeof(Wide)), root, shape);
   }
 
  private:
-  // A child slot of a wide node: a source leaf, or (wide >= 0) the wide node planned for it.
   struct Slot {
     BBox box;
-    NodeRef source;
-    int wide = -1;
+    NodeRef ref;
+    float area;
+    int children;  // of a source inner node; 0 for a leaf
   };
-  struct Plan {
+
+  static Slot slot(const Source& parent, int i) {
+    Slot s{child_box<N, kCompact>(parent, i), parent.child[i], 0.0f, 0};
+    s.area = s.box.surface_area();
+    if (!is_leaf(s.ref)) s.children = child_count<N, kCompact>(*ref_ptr<Source>(s.ref));
+    return s;
+  }
+
+  // Writes the wide node that replaces source inner node `ref`, then, depth first, those below
+  // it; returns its reference. Leaves stay where the build put them.
+  NodeRef collapse(NodeRef ref) {
     Slot slots[kWide];
     int count = 0;
-  };
-
-  // Plans the wide node for the source inner node `ref` and, depth first, those below it.
-  int plan(NodeRef ref) {
-    Plan p;
-    open(ref, p, -1);
+    const Source& top = *ref_ptr<Source>(ref);
+    for (int i = 0; i < N; ++i)
+      if (top.child[i] != kEmptyRef) slots[count++] = slot(top, i);
     for (;;) {
       int best = -1;
-      float best_area = -1.0f;
-      for (int i = 0; i < p.count; ++i) {
-        const NodeRef r = p.slots[i].source;
-        if (is_leaf(r)) continue;
-        if (p.count - 1 + child_count<N, kCompact>(*ref_ptr<Source>(r)) > kWide) continue;
-        const float area = p.slots[i].box.surface_area();
-        if (area > best_area) {
-          best_area = area;
-          best = i;
-        }
+      for (int i = 0; i < count; ++i) {
+        if (slots[i].children == 0 || count - 1 + slots[i].children > kWide) continue;
+        if (best < 0 || slots[i].area > slots[best].area) best = i;
       }
       if (best < 0) break;
-      open(p.slots[best].source, p, best);
-    }
-    const int index = static_cast<int>(nodes_.size());
-    nodes_.push_back(p);
-    for (int i = 0; i < p.count; ++i) {
-      const NodeRef r = p.slots[i].source;
-      if (is_leaf(r)) {
-        leaf_bytes_ += whole_lines(leaf_bytes(ref_ptr<LeafHeader>(r), kCompact));
-      } else {
-        const int child = plan(r);
-        nodes_[static_cast<size_t>(index)].slots[i].wide = child;
+      // The opened node's first child takes its slot, the others go to the end.
+      const Source& opened = *ref_ptr<Source>(slots[best].ref);
+      int target = best;
+      for (int i = 0; i < N; ++i) {
+        if (opened.child[i] == kEmptyRef) continue;
+        slots[target] = slot(opened, i);
+        target = count++;
       }
+      --count;  // the opened node's own slot was reused
     }
-    return index;
-  }
 
-  // Puts the children of source node `ref` into `p`: into slot `replace` (the slot that held
-  // `ref`) and after the last slot.
-  static void open(NodeRef ref, Plan& p, int replace) {
-    const Source& n = *ref_ptr<Source>(ref);
-    for (int i = 0; i < N; ++i) {
-      if (n.child[i] == kEmptyRef) continue;
-      Slot s{child_box<N, kCompact>(n, i), n.child[i], -1};
-      if (replace >= 0) {
-        p.slots[replace] = s;
-        replace = -1;
-      } else {
-        p.slots[p.count++] = s;
-      }
-    }
-  }
-
-  // The node, then its leaves (a ray that enters them has just read the node), then each inner
-  // child's subtree in turn.
-  NodeRef write(int index, char* base, size_t& offset) const {
-    auto* node = reinterpret_cast<Wide*>(base + offset);
-    offset += whole_lines(sizeof(Wide));
-    const Plan& p = nodes_[static_cast<size_t>(index)];
+    if (used_ == capacity_) throw std::logic_error("BVH collapse: more nodes than the build made");
+    auto* node = reinterpret_cast<Wide*>(base_ + used_++ * whole_lines(sizeof(Wide)));
     clear_node<kWide, kCompact>(*node);
     BBox boxes[kWide];
-    for (int i = 0; i < p.count; ++i) boxes[i] = p.slots[i].box;
-    set_child_boxes<kWide, kCompact>(*node, boxes, p.count);
-    for (int i = 0; i < p.count; ++i) {
-      const NodeRef r = p.slots[i].source;
-      if (!is_leaf(r)) continue;
-      const auto* leaf = ref_ptr<LeafHeader>(r);
-      char* dst = base + offset;
-      offset += whole_lines(leaf_bytes(leaf, kCompact));
-      std::memcpy(dst, leaf, leaf_bytes(leaf, kCompact));
-      node->child[i] = make_leaf_ref(dst, leaf_code(r));
-    }
-    for (int i = 0; i < p.count; ++i)
-      if (p.slots[i].wide >= 0) node->child[i] = write(p.slots[i].wide, base, offset);
+    for (int i = 0; i < count; ++i) boxes[i] = slots[i].box;
+    set_child_boxes<kWide, kCompact>(*node, boxes, count);
+    for (int i = 0; i < count; ++i)
+      node->child[i] = is_leaf(slots[i].ref) ? slots[i].ref : collapse(slots[i].ref);
     return make_node_ref(node);
   }
 
-  std::vector<Plan> nodes_;
-  size_t leaf_bytes_ = 0;
+  char* base_ = nullptr;
+  size_t used_ = 0, capacity_ = 0;
 };
 
 template <bool kCompact>
-void collapse(Tree& tree) {
+void collapse(Tree& tree, size_t max_inner_nodes) {
   if (tree.shape().width == 2)
-    Collapser<2, kCompact>::run(tree);
+    Collapser<2, kCompact>::run(tree, max_inner_nodes);
   else
-    Collapser<4, kCompact>::run(tree);
+    Collapser<4, kCompact>::run(tree, max_inner_nodes);
 }
 
 }  // namespace
 
-void collapse_to_wide(Tree& tree) {
+void collapse_to_wide(Tree& tree, size_t max_inner_nodes) {
   const NodeRef root = tree.root();
-  if (tree.shape().width >= kWide || root == kEmptyRef || is_leaf(root) || tree.relaid_out()) {
-    relayout_depth_first(tree);
+  if (tree.shape().width >= kWide || root == kEmptyRef || is_leaf(root) || tree.relaid_out() ||
+      tree.collapsed())
     return;
-  }
   if (tree.shape().compact)
-    collapse<true>(tree);
+    collapse<true>(tree, max_inner_nodes);
   else
-    collapse<false>(tree);
+    collapse<false>(tree, max_inner_nodes);
 }
 
 }  // namespace tuneray::bvh

@@ -15,10 +15,11 @@ inline constexpr int kCollapsedWidth = BvhConfig::kCollapsedWidth;
 
 // Merges inner nodes into 8-wide nodes, greedily: of the children of a node under construction,
 // the inner child with the largest surface area whose children still fit is replaced by them,
-// until none fits (the rule Embree's own wide builders split by). Nodes and leaves are then laid
-// out depth-first in one allocation, as relayout_depth_first does, and the tree's shape becomes
-// 8 wide. Leaves are copied unchanged, so every ray finds the same triangles. A tree already 8
-// wide, or a lone leaf, is only re-laid out.
-void collapse_to_wide(Tree& tree);
+// until none fits (the rule Embree's own wide builders split by). The wide nodes are written
+// depth first into one allocation; the leaves stay where the build put them, unchanged, so
+// every ray finds the same triangles (static=1 then copies the whole tree into one allocation).
+// `max_inner_nodes` is at least the source tree's inner node count (BuildResult::inner_nodes).
+// A tree already 8 wide, a lone leaf or an already collapsed tree is left as it is.
+void collapse_to_wide(Tree& tree, size_t max_inner_nodes);
 
 }  // namespace tuneray::bvh

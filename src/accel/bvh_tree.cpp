@@ -20,9 +20,13 @@ void Tree::adopt_buffer(void* buffer, size_t bytes, NodeRef root) {
   root_ = root;
 }
 
-void Tree::adopt_buffer(void* buffer, size_t bytes, NodeRef root, TreeShape shape) {
-  adopt_buffer(buffer, bytes, root);
+void Tree::adopt_collapsed(void* nodes, size_t bytes, NodeRef root, TreeShape shape) {
+  if (buffer_) std::free(buffer_);
+  buffer_ = nodes;
+  buffer_bytes_ = bytes;
+  root_ = root;
   shape_ = shape;
+  collapsed_ = true;
 }
 
 void Tree::reset() {
@@ -32,6 +36,7 @@ void Tree::reset() {
   buffer_ = nullptr;
   buffer_bytes_ = 0;
   root_ = kEmptyRef;
+  collapsed_ = false;
 }
 
 }  // namespace tuneray::bvh

@@ -28,13 +28,16 @@ class Tree {
   // Takes ownership of a buffer from aligned_alloc holding the nodes of `root`; releases the
   // Embree handle (the nodes it held are no longer referenced).
   void adopt_buffer(void* buffer, size_t bytes, NodeRef root);
-  // The same for nodes of another shape than the tree had (the collapse to 8-wide nodes).
-  void adopt_buffer(void* buffer, size_t bytes, NodeRef root, TreeShape shape);
+  // Takes ownership of a buffer from aligned_alloc holding the inner nodes of `root`, of shape
+  // `shape`, whose leaves are still in the Embree handle's allocator (kept).
+  void adopt_collapsed(void* nodes, size_t bytes, NodeRef root, TreeShape shape);
   void reset();
 
   NodeRef root() const { return root_; }
   const TreeShape& shape() const { return shape_; }
-  bool relaid_out() const { return buffer_ != nullptr; }
+  // The whole tree in one buffer of ours (static=1).
+  bool relaid_out() const { return buffer_ != nullptr && handle_ == nullptr; }
+  bool collapsed() const { return collapsed_; }
 
  private:
   NodeRef root_ = kEmptyRef;
@@ -42,6 +45,7 @@ class Tree {
   RTCBVH handle_ = nullptr;
   void* buffer_ = nullptr;
   size_t buffer_bytes_ = 0;
+  bool collapsed_ = false;
 };
 
 }  // namespace tuneray::bvh

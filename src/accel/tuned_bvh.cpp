@@ -27,10 +27,8 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   bvh::BuildResult result;
   try {
     result = bvh::build_tree(geometry, config_, *device_, primitives_, *next);
-    if (config_.collapses())
-      bvh::collapse_to_wide(*next);
-    else if (config_.is_static)
-      bvh::relayout_depth_first(*next);
+    if (config_.collapses()) bvh::collapse_to_wide(*next, result.inner_nodes);
+    if (config_.is_static) bvh::relayout_depth_first(*next);
   } catch (...) {
     tree_.reset();
     context_ = {};
@@ -61,6 +59,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
     if (!s.empty()) notes += (notes.empty() ? "" : "; ") + s;
   };
   add(result.notes);
+  if (tree_->collapsed()) add("collapsed into 8-wide nodes");
   if (tree_->relaid_out()) add("relaid out depth-first in one allocation");
   if (config_.quality == BvhQuality::kHigh)
     add("spatial splits: " + std::to_string(result.spatial_splits) + ", references " +

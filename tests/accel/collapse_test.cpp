@@ -19,11 +19,13 @@ namespace {
 struct Built {
   bvh::Tree tree;
   bvh::PrimitiveCache cache;
+  bvh::BuildResult result;
 };
 
+// The tree as Embree's builder shapes it (collapse_to_wide is called by the tests).
 void build(const Mesh& mesh, const std::string& text, Built& out) {
-  bvh::build_tree(mesh.view(), parse_bvh_config(text), *EmbreeDevice::shared(), out.cache,
-                  out.tree);
+  out.result = bvh::build_tree(mesh.view(), parse_bvh_config(text), *EmbreeDevice::shared(),
+                               out.cache, out.tree);
 }
 
 bool box_contains(const BBox& outer, const BBox& inner) {
@@ -100,9 +102,11 @@ TEST_F(Collapse, KeepsEveryLeafAndFillsTheNodesGreedily) {
     build(*mesh_, text, source);
     build(*mesh_, text, collapsed);
     const bvh::TreeStats before = bvh::measure_tree(source.tree, 1.0, 1.0);
-    bvh::collapse_to_wide(collapsed.tree);
+    EXPECT_EQ(collapsed.result.inner_nodes, before.node_count);
+    bvh::collapse_to_wide(collapsed.tree, collapsed.result.inner_nodes);
     ASSERT_EQ(collapsed.tree.shape().width, 8);
-    ASSERT_TRUE(collapsed.tree.relaid_out());
+    ASSERT_TRUE(collapsed.tree.collapsed());
+    ASSERT_FALSE(collapsed.tree.relaid_out());
     const bvh::TreeStats after = bvh::measure_tree(collapsed.tree, 1.0, 1.0);
     EXPECT_EQ(after.leaf_count, before.leaf_count);
     EXPECT_EQ(after.references, before.references);
@@ -140,8 +144,9 @@ TEST_F(Collapse, RaysFindExactlyWhatTheUncollapsedTreeFinds) {
   for (int i = 0; i < 4000; ++i)
     rays.push_back(
         Ray{random_point(rng, mesh_->bounds()), 0, random_direction(rng), 0.2f * rng.next_float()});
-  for (const char* text : {"branching=2", "branching=4,max_leaf=4", "branching=2,compact=1",
-                           "branching=2,robust=1", "branching=2,quality=high"}) {
+  for (const char* text :
+       {"branching=2", "branching=4,max_leaf=4", "branching=2,compact=1", "branching=2,robust=1",
+        "branching=2,quality=high", "branching=2,static=1", "branching=4,compact=1,static=1"}) {
     SCOPED_TRACE(text);
     TunedBvhAccel plain(parse_bvh_config(std::string(text) + ",collapse=0"));
     TunedBvhAccel wide(parse_bvh_config(std::string(text) + ",collapse=1"));
