@@ -1,5 +1,6 @@
-// The 11 build parameters and our 4 switches of the tuned BVH (DESIGN §3), defaults = Embree's
-// recommended rtcDefaultBuildArguments. A plain struct so the tuner can fill it directly.
+// The 11 build parameters of the tuned BVH (DESIGN §3), defaults = Embree's recommended
+// rtcDefaultBuildArguments, and our switches (static, compact, robust off; collapse on). A plain
+// struct so the tuner can fill it directly.
 #pragma once
 
 #include <string>
