@@ -1,6 +1,7 @@
 #include "accel/bvh_collapse.h"
 
 #include <cstdlib>
+#include <memory>
 #include <new>
 #include <stdexcept>
 
@@ -10,7 +11,7 @@ namespace tuneray::bvh {
 
 namespace {
 
-constexpr int kWide = kCollapsedWidth;
+constexpr int kWide = BvhConfig::kCollapsedWidth;
 
 template <int N, bool kCompact>
 class Collapser {
@@ -22,20 +23,16 @@ class Collapser {
     // Every wide node takes the place of at least one source node, so the source's count bounds
     // the buffer; pages past the nodes written are never touched.
     const size_t bytes = max_inner_nodes * whole_lines(sizeof(Wide));
+    std::unique_ptr<char, decltype(&std::free)> buffer(
+        static_cast<char*>(std::aligned_alloc(kCacheLine, bytes)), &std::free);
+    if (!buffer) throw std::bad_alloc();
     Collapser c;
-    c.base_ = static_cast<char*>(std::aligned_alloc(kCacheLine, bytes));
-    if (!c.base_) throw std::bad_alloc();
+    c.base_ = buffer.get();
     c.capacity_ = max_inner_nodes;
-    NodeRef root = kEmptyRef;
-    try {
-      root = c.collapse(tree.root());
-    } catch (...) {
-      std::free(c.base_);
-      throw;
-    }
+    const NodeRef root = c.collapse(tree.root());
     TreeShape shape = tree.shape();
     shape.width = kWide;
-    tree.adopt_collapsed(c.base_, c.used_ * whole_lines(sizeof(Wide)), root, shape);
+    tree.adopt_collapsed(buffer.release(), c.used_ * whole_lines(sizeof(Wide)), root, shape);
   }
 
  private:

@@ -11,8 +11,6 @@
 
 namespace tuneray::bvh {
 
-inline constexpr int kCollapsedWidth = BvhConfig::kCollapsedWidth;
-
 // Merges inner nodes into 8-wide nodes, greedily: of the children of a node under construction,
 // the inner child with the largest surface area whose children still fit is replaced by them,
 // until none fits (the rule Embree's own wide builders split by). The wide nodes are written

@@ -37,11 +37,15 @@ bool box_contains(const BBox& outer, const BBox& inner) {
 // Walks an 8-wide tree and checks, node by node: no node could take in one more inner child
 // (every inner child has more children than the free slots plus the one it would free), and
 // every child box contains the boxes of its own children, down to the triangles of the leaves.
+struct WideCounts {
+  size_t nodes = 0, leaves = 0, not_maximal = 0, not_containing = 0;
+};
+
 template <bool kCompact>
-struct WideCheck {
+struct WideCheck : WideCounts {
   using Node = bvh::NodeOf<8, kCompact>;
   const Mesh& mesh;
-  size_t nodes = 0, leaves = 0, references = 0, not_maximal = 0, not_containing = 0;
+  explicit WideCheck(const Mesh& m) : mesh(m) {}
 
   BBox leaf_box(bvh::NodeRef ref) {
     const auto* leaf = bvh::ref_ptr<bvh::LeafHeader>(ref);
@@ -62,7 +66,6 @@ struct WideCheck {
   BBox visit(bvh::NodeRef ref) {
     if (bvh::is_leaf(ref)) {
       ++leaves;
-      references += bvh::ref_ptr<bvh::LeafHeader>(ref)->prim_count;
       return leaf_box(ref);
     }
     ++nodes;
@@ -84,6 +87,14 @@ struct WideCheck {
     return all;
   }
 };
+
+WideCounts check_wide_tree(const Mesh& mesh, const bvh::Tree& tree) {
+  auto run = [&](auto check) -> WideCounts {
+    check.visit(tree.root());
+    return check;
+  };
+  return tree.shape().compact ? run(WideCheck<true>(mesh)) : run(WideCheck<false>(mesh));
+}
 
 class Collapse : public ::testing::Test {
  protected:
@@ -118,23 +129,11 @@ TEST_F(Collapse, KeepsEveryLeafAndFillsTheNodesGreedily) {
       EXPECT_LT(after.node_count, before.node_count);
     EXPECT_LT(after.depth, before.depth);
 
-    const bool compact = collapsed.tree.shape().compact;
-    size_t nodes = 0, leaves = 0, not_maximal = 0, not_containing = 0;
-    if (compact) {
-      WideCheck<true> c{*mesh_};
-      c.visit(collapsed.tree.root());
-      nodes = c.nodes, leaves = c.leaves, not_maximal = c.not_maximal;
-      not_containing = c.not_containing;
-    } else {
-      WideCheck<false> c{*mesh_};
-      c.visit(collapsed.tree.root());
-      nodes = c.nodes, leaves = c.leaves, not_maximal = c.not_maximal;
-      not_containing = c.not_containing;
-    }
-    EXPECT_EQ(nodes, after.node_count);
-    EXPECT_EQ(leaves, before.leaf_count);
-    EXPECT_EQ(not_maximal, 0u);
-    EXPECT_EQ(not_containing, 0u);
+    const WideCounts wide = check_wide_tree(*mesh_, collapsed.tree);
+    EXPECT_EQ(wide.nodes, after.node_count);
+    EXPECT_EQ(wide.leaves, before.leaf_count);
+    EXPECT_EQ(wide.not_maximal, 0u);
+    EXPECT_EQ(wide.not_containing, 0u);
   }
 }
 
