@@ -245,6 +245,26 @@ bool bsdf_sample(const BsdfParams& p, Vec3f wo, float u_lobe, Vec2f u, BsdfSampl
   return false;
 }
 
+BsdfEval bsdf_evaluate_by_type(const BsdfParams& p, Vec3f wo, Vec3f wi) {
+  BsdfEval e;
+  switch (p.type) {
+    case MaterialType::kLambert:
+      e.f = wo.z > 0 && wi.z > 0 ? p.base_color * kInvPi : Color(0.0f);
+      e.pdf = wo.z > 0 ? cosine_hemisphere_pdf(wi.z) : 0.0f;
+      break;
+    case MaterialType::kGlossy:
+      e.f = glossy_eval(p, wo, wi, &e.pdf);
+      break;
+    case MaterialType::kPrincipled:
+      if (wo.z > 0 && wi.z > 0) e.f = principled_eval(p, principled_lobes(p, wo), wo, wi, &e.pdf);
+      break;
+    case MaterialType::kMirror:
+    case MaterialType::kDielectric:
+      break;
+  }
+  return e;
+}
+
 BsdfEval bsdf_evaluate(const BsdfParams& p, Vec3f wo, Vec3f wi) {
   // Lobe weights from the type: Lambert = diffuse only, glossy = GGX only (F0 = Ks, sampled
   // always), principled = diffuse under a GGX coat when max(Ks) > 0, else exactly Lambert.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "math/vec.h"
+#include "render/ggx.h"  // the GGX pieces, inline; exposed for tests
 #include "scene/material.h"
 
 namespace tuneray {
@@ -43,24 +44,13 @@ struct BsdfEval {
 // selected by the type, so the shared terms (half vector, Schlick weights, Smith Lambdas) are
 // computed once and there are no type branches (docs/quality.md, technique 4).
 BsdfEval bsdf_evaluate(const BsdfParams& p, Vec3f wo, Vec3f wi);
-// The per-type reference for bsdf_evaluate: bsdf_eval and bsdf_pdf called one after the other.
-inline BsdfEval bsdf_evaluate_by_type(const BsdfParams& p, Vec3f wo, Vec3f wi) {
-  return {bsdf_eval(p, wo, wi), bsdf_pdf(p, wo, wi)};
-}
+// The per-type reference for bsdf_evaluate: exactly bsdf_eval's f and bsdf_pdf's pdf, from one
+// call of the type's function (which computes both; called one after the other, the GGX terms
+// were computed twice).
+BsdfEval bsdf_evaluate_by_type(const BsdfParams& p, Vec3f wo, Vec3f wi);
 
 // True if the BSDF has any non-delta component (next-event estimation is worth doing).
 bool bsdf_has_smooth_lobe(const BsdfParams& p);
-
-// GGX microfacet pieces (anisotropic), exposed for tests.
-namespace ggx {
-float D(Vec3f wh, float ax, float ay);
-float Lambda(Vec3f w, float ax, float ay);
-float G1(Vec3f w, float ax, float ay);
-float G2(Vec3f wo, Vec3f wi, float ax, float ay);
-// Samples a visible normal (Heitz 2018) for wo in the upper hemisphere; pdf of wh is
-// G1(wo) max(0, wo.wh) D(wh) / wo.z.
-Vec3f sample_visible_normal(Vec3f wo, float ax, float ay, Vec2f u);
-}  // namespace ggx
 
 // Dielectric Fresnel reflectance for cos_i (signed: negative = from inside) and eta = n_t / n_i
 // of the outside/inside pair (ior).
