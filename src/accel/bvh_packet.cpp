@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "accel/bvh_traverse_impl.h"
@@ -13,7 +14,7 @@ namespace {
 using namespace detail;
 
 constexpr int kPacketSize = 8;
-// A packet with this many rays or fewer left in a subtree continues ray by ray: 8 lanes of box
+// A stream with this many rays or fewer left in a subtree continues ray by ray: 8 lanes of box
 // tests for a few rays cost more than their single-ray traversals (Embree's hybrid intersectors
 // switch at a similar count).
 constexpr int kSwitchThreshold = 3;
@@ -32,33 +33,55 @@ struct Packet {
 };
 
 // The rays must share the octant `octant` (the packet box test picks one near plane per axis).
+// Each lane's terms are those make_traversal_ray gives the ray alone (the same clamp of tiny
+// direction components, the same correctly rounded division and product), computed 8 at a time.
 void make_packet(const Ray* rays, const uint32_t* index, int count, int octant, Packet& pk) {
-  alignas(32) float inv[3][kPacketSize], org_inv[3][kPacketSize], org[3][kPacketSize],
-      dir[3][kPacketSize], tnear[kPacketSize];
+  alignas(32) float org[3][kPacketSize], dir[3][kPacketSize], tnear[kPacketSize], tfar[kPacketSize];
   for (int i = 0; i < kPacketSize; ++i) {
+    // Padding lanes repeat the first ray (so they widen no frustum) but never enter a box nor
+    // hit a triangle.
     const Ray& ray = rays[index[i < count ? i : 0]];
-    pk.ray[i] = make_traversal_ray(ray.org, ray.dir, ray.tnear, ray.tfar, false);
-    const TraversalRay& r = pk.ray[i];
     for (int a = 0; a < 3; ++a) {
-      inv[a][i] = r.inv[a];
-      org_inv[a][i] = r.org_inv[a];
-      org[a][i] = r.org[a];
-      dir[a][i] = r.dir[a];
+      org[a][i] = ray.org[a];
+      dir[a][i] = ray.dir[a];
     }
-    tnear[i] = r.tnear;
-    // Padding lanes never enter a box nor hit a triangle.
-    pk.tfar[i] = i < count ? r.tfar : -kInf;
+    tnear[i] = ray.tnear;
+    tfar[i] = ray.tfar;
+    pk.tfar[i] = i < count ? ray.tfar : -kInf;
     pk.hit[i] = Hit{};
   }
-  near_rows_of_octant(octant, pk.near_row);
+  alignas(32) float inv[3][kPacketSize], org_inv[3][kPacketSize];
+  int nonnegative[3];
+  const __m256 sign_bit = _mm256_set1_ps(-0.0f), tiny = _mm256_set1_ps(1e-18f);
   for (int a = 0; a < 3; ++a) {
-    pk.inv[a] = _mm256_load_ps(inv[a]);
-    pk.org_inv[a] = _mm256_load_ps(org_inv[a]);
+    const __m256 d = _mm256_load_ps(dir[a]);
+    const __m256 small = _mm256_cmp_ps(_mm256_andnot_ps(sign_bit, d), tiny, _CMP_LT_OQ);
+    const __m256 clamped =
+        _mm256_blendv_ps(d, _mm256_or_ps(_mm256_and_ps(d, sign_bit), tiny), small);
     pk.org[a] = _mm256_load_ps(org[a]);
-    pk.dir[a] = _mm256_load_ps(dir[a]);
-    pk.far_row[a] = pk.near_row[a] < 3 ? pk.near_row[a] + 3 : pk.near_row[a] - 3;
+    pk.dir[a] = d;
+    pk.inv[a] = _mm256_div_ps(_mm256_set1_ps(1.0f), clamped);
+    pk.org_inv[a] = _mm256_mul_ps(pk.org[a], pk.inv[a]);
+    _mm256_store_ps(inv[a], pk.inv[a]);
+    _mm256_store_ps(org_inv[a], pk.org_inv[a]);
+    nonnegative[a] = _mm256_movemask_ps(_mm256_cmp_ps(clamped, _mm256_setzero_ps(), _CMP_GE_OQ));
   }
   pk.tnear = _mm256_load_ps(tnear);
+  for (int i = 0; i < kPacketSize; ++i) {
+    TraversalRay& r = pk.ray[i];
+    for (int a = 0; a < 3; ++a) {
+      r.org[a] = org[a][i];
+      r.dir[a] = dir[a][i];
+      r.inv[a] = inv[a][i];
+      r.org_inv[a] = org_inv[a][i];
+      r.near_row[a] = (nonnegative[a] >> i) & 1 ? a : a + 3;
+    }
+    r.tnear = tnear[i];
+    r.tfar = tfar[i];
+  }
+  near_rows_of_octant(octant, pk.near_row);
+  for (int a = 0; a < 3; ++a)
+    pk.far_row[a] = pk.near_row[a] < 3 ? pk.near_row[a] + 3 : pk.near_row[a] - 3;
 }
 
 inline __m256 lanes_of(uint32_t mask) {
@@ -146,67 +169,189 @@ inline void intersect_leaf_packet(NodeRef leaf, Packet& pk, uint32_t mask) {
   }
 }
 
-// A stack entry keeps each ray's own entry distance, so a ray that has found a nearer hit skips
-// the box even when another ray of the packet still needs it.
-struct PacketEntry {
-  NodeRef ref;
-  uint32_t mask;  // rays that entered this node's box
-  __m256 dist;    // their entry distances (+inf for the others)
+// Conservative bounds of a stream's rays, to cull a node's children for all of them at once
+// before their own box tests: per axis the range of the rays' inverse directions and origin terms
+// (the rays share an octant, so the near plane of every axis is common).
+struct Frustum {
+  bool valid = false;  // false: a non-finite term; every child goes on to the rays' own tests
+  float inv_lo[3], inv_hi[3], oi_lo[3], oi_hi[3], inv_abs[3], oi_abs[3];
+  float tnear_lo, tfar_hi;
+  int near_row[3], far_row[3];
 };
 
+// Bound of the rounding of a frustum term against the rays' own fused box tests: a few float
+// roundings of terms of magnitude |plane| |inv| + |org inv|, kept far above them.
+constexpr float kFrustumSlack = 0x1p-18f;
+
+// Children of `node` that some ray of the frustum may enter: a child whose box the frustum's
+// bounds place outside every ray's [tnear, tfar] is culled. Exact for no ray; conservative for
+// all (each bound is padded by kFrustumSlack of its terms' magnitude).
 template <int N>
-void traverse_packet(const TraversalContext& ctx, Packet& pk, uint32_t live) {
+int frustum_children(const FastNode<N>& node, const Frustum& f) {
+  using L = LanesOf<N>;
+  using V = typename L::V;
+  V tmin = L::set1(f.tnear_lo), tmax = L::set1(f.tfar_hi);
+  const V sign = L::set1(-0.0f);
+  for (int a = 0; a < 3; ++a) {
+    const V near = L::load(node.bounds[f.near_row[a]]), far = L::load(node.bounds[f.far_row[a]]);
+    const V inv_lo = L::set1(f.inv_lo[a]), inv_hi = L::set1(f.inv_hi[a]);
+    const V inv_abs = L::set1(f.inv_abs[a] * kFrustumSlack);
+    const V oi_abs = L::set1(f.oi_abs[a] * kFrustumSlack);
+    // The rays' entry along this axis is near * inv - org_inv, linear in each term.
+    const V near_lo = L::min(L::mul(near, inv_lo), L::mul(near, inv_hi));
+    const V far_hi = L::max(L::mul(far, inv_lo), L::mul(far, inv_hi));
+    const V near_slack = L::fmadd(L::and_(L::xor_(near, sign), near), inv_abs, oi_abs);
+    const V far_slack = L::fmadd(L::and_(L::xor_(far, sign), far), inv_abs, oi_abs);
+    tmin = L::max(tmin, L::sub(L::sub(near_lo, L::set1(f.oi_hi[a])), near_slack));
+    tmax = L::min(tmax, L::add(L::sub(far_hi, L::set1(f.oi_lo[a])), far_slack));
+  }
+  return L::movemask(L::le(tmin, tmax));
+}
+
+// Up to 8 packets (64 rays) of one octant; ray i of the stream is lane i % 8 of packet i / 8.
+constexpr int kStreamPackets = 8;
+struct Stream {
+  Packet pk[kStreamPackets];
+  int packets = 0;
+  Frustum frustum;
+};
+
+inline uint32_t packet_bits(uint64_t rays, int p) {
+  return static_cast<uint32_t>(rays >> (8 * p)) & 0xffu;
+}
+
+inline float horizontal_max(__m256 v) {
+  __m128 m = _mm_max_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+  m = _mm_max_ps(m, _mm_movehl_ps(m, m));
+  m = _mm_max_ss(m, _mm_shuffle_ps(m, m, 1));
+  return _mm_cvtss_f32(m);
+}
+
+// From the packets' lanes: padding lanes repeat a ray of their packet, so they widen nothing.
+void make_frustum(const Stream& s, Frustum& f) {
+  const __m256 inf = _mm256_set1_ps(kInf);
+  __m256 inv_lo[3], inv_hi[3], oi_lo[3], oi_hi[3];
+  __m256 tnear_lo = inf;
+  // x - x is 0 for a finite x, NaN for an infinite or NaN one.
+  __m256 finite_terms = _mm256_setzero_ps();
+  for (int a = 0; a < 3; ++a) {
+    inv_lo[a] = oi_lo[a] = inf;
+    inv_hi[a] = oi_hi[a] = _mm256_set1_ps(-kInf);
+  }
+  for (int p = 0; p < s.packets; ++p) {
+    const Packet& pk = s.pk[p];
+    for (int a = 0; a < 3; ++a) {
+      inv_lo[a] = _mm256_min_ps(inv_lo[a], pk.inv[a]);
+      inv_hi[a] = _mm256_max_ps(inv_hi[a], pk.inv[a]);
+      oi_lo[a] = _mm256_min_ps(oi_lo[a], pk.org_inv[a]);
+      oi_hi[a] = _mm256_max_ps(oi_hi[a], pk.org_inv[a]);
+      finite_terms = _mm256_add_ps(finite_terms, _mm256_sub_ps(pk.inv[a], pk.inv[a]));
+      finite_terms = _mm256_add_ps(finite_terms, _mm256_sub_ps(pk.org_inv[a], pk.org_inv[a]));
+    }
+    finite_terms = _mm256_add_ps(finite_terms, _mm256_sub_ps(pk.tnear, pk.tnear));
+    tnear_lo = _mm256_min_ps(tnear_lo, pk.tnear);
+  }
+  for (int a = 0; a < 3; ++a) {
+    f.inv_lo[a] = horizontal_min(inv_lo[a]);
+    f.inv_hi[a] = horizontal_max(inv_hi[a]);
+    f.oi_lo[a] = horizontal_min(oi_lo[a]);
+    f.oi_hi[a] = horizontal_max(oi_hi[a]);
+    f.inv_abs[a] = std::max(std::fabs(f.inv_lo[a]), std::fabs(f.inv_hi[a]));
+    f.oi_abs[a] = std::max(std::fabs(f.oi_lo[a]), std::fabs(f.oi_hi[a]));
+    f.near_row[a] = s.pk[0].near_row[a];
+    f.far_row[a] = s.pk[0].far_row[a];
+  }
+  f.tnear_lo = horizontal_min(tnear_lo);
+  // No far bound: camera rays have none, and a NaN one would hide the others' from a max.
+  f.tfar_hi = std::numeric_limits<float>::infinity();
+  f.valid =
+      _mm256_movemask_ps(_mm256_cmp_ps(finite_terms, _mm256_setzero_ps(), _CMP_EQ_OQ)) == 0xff;
+}
+
+// The rays of `entering` that enter child `c`, by the same operations in the same order as the
+// single-ray box test, lane by lane; `tmin` gets their entry distances (+inf for the others).
+template <int N>
+inline uint32_t packet_enters_child(const FastNode<N>& node, int c, const Packet& pk,
+                                    __m256 entering, __m256 tfar, __m256& tmin) {
+  __m256 tn[3], tf[3];
+  for (int a = 0; a < 3; ++a) {
+    const __m256 near = _mm256_broadcast_ss(&node.bounds[pk.near_row[a]][c]);
+    const __m256 far = _mm256_broadcast_ss(&node.bounds[pk.far_row[a]][c]);
+    tn[a] = _mm256_fmsub_ps(near, pk.inv[a], pk.org_inv[a]);
+    tf[a] = _mm256_fmsub_ps(far, pk.inv[a], pk.org_inv[a]);
+  }
+  const __m256 entry = _mm256_max_ps(_mm256_max_ps(tn[0], tn[1]), _mm256_max_ps(tn[2], pk.tnear));
+  const __m256 exit = _mm256_min_ps(_mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), tf[2]), tfar);
+  const __m256 in = _mm256_and_ps(_mm256_cmp_ps(entry, exit, _CMP_LE_OQ), entering);
+  tmin = _mm256_blendv_ps(_mm256_set1_ps(kInf), entry, in);
+  return static_cast<uint32_t>(_mm256_movemask_ps(in));
+}
+
+struct StreamEntry {
+  NodeRef ref;
+  uint64_t rays;  // rays that entered this node's box
+  float dist;     // the nearest of their entry distances
+};
+
+// The stream's rays of `live` through the tree, nearest child first (by its rays' nearest entry).
+// At each node the frustum culls children for all rays at once; the children it keeps are
+// tested against each packet's rays (SIMD over the rays). Rays that thin out go on one by one.
+template <int N>
+void traverse_stream(const TraversalContext& ctx, Stream& s, uint64_t live) {
   using Node = FastNode<N>;
-  alignas(32) PacketEntry stack[kStackSize];
+  StreamEntry stack[kStackSize];
   int sp = 0;
   NodeRef cur = ctx.root;
-  uint32_t cur_mask = live;
-  const __m256 inf = _mm256_set1_ps(kInf);
+  uint64_t rays = live;
   for (;;) {
     for (;;) {
-      if (__builtin_popcount(cur_mask) <= kSwitchThreshold) {
-        while (cur_mask) {
-          const int i = __builtin_ctz(cur_mask);
-          cur_mask &= cur_mask - 1;
-          traverse_from<N, false, false, false>(ctx, cur, pk.ray[i], pk.tfar[i], &pk.hit[i]);
+      if (__builtin_popcountll(rays) <= kSwitchThreshold) {
+        for (; rays; rays &= rays - 1) {
+          const int i = __builtin_ctzll(rays);
+          Packet& pk = s.pk[i / kPacketSize];
+          const int lane = i % kPacketSize;
+          traverse_from<N, false, false, false>(ctx, cur, pk.ray[lane], pk.tfar[lane],
+                                                &pk.hit[lane]);
         }
         break;
       }
       if (is_leaf(cur)) {
-        intersect_leaf_packet(cur, pk, cur_mask);
+        for (int p = 0; p < s.packets; ++p) {
+          if (const uint32_t bits = packet_bits(rays, p)) intersect_leaf_packet(cur, s.pk[p], bits);
+        }
         break;
       }
       const Node& node = *ref_ptr<Node>(cur);
-      const __m256 tfar = _mm256_load_ps(pk.tfar);
-      const __m256 entering = lanes_of(cur_mask);
+      int candidates = s.frustum.valid ? frustum_children<N>(node, s.frustum) : (1 << N) - 1;
+      __m256 tfar[kStreamPackets], entering[kStreamPackets];
+      for (int p = 0; p < s.packets; ++p) {
+        tfar[p] = _mm256_load_ps(s.pk[p].tfar);
+        entering[p] = lanes_of(packet_bits(rays, p));
+      }
       NodeRef kids[N];
-      uint32_t kid_mask[N];
-      __m256 kid_tmin[N];
+      uint64_t kid_rays[N];
       float kid_dist[N];
       int count = 0;
-      for (int c = 0; c < N && node.child[c] != kEmptyRef; ++c) {
-        // The same operations in the same order as the single-ray box test, lane by lane.
-        __m256 tn[3], tf[3];
-        for (int a = 0; a < 3; ++a) {
-          const __m256 near = _mm256_broadcast_ss(&node.bounds[pk.near_row[a]][c]);
-          const __m256 far = _mm256_broadcast_ss(&node.bounds[pk.far_row[a]][c]);
-          tn[a] = _mm256_fmsub_ps(near, pk.inv[a], pk.org_inv[a]);
-          tf[a] = _mm256_fmsub_ps(far, pk.inv[a], pk.org_inv[a]);
+      for (; candidates; candidates &= candidates - 1) {
+        const int c = __builtin_ctz(candidates);
+        if (node.child[c] == kEmptyRef) break;  // empty slots are the last ones
+        uint64_t entered = 0;
+        __m256 nearest = _mm256_set1_ps(kInf);
+        for (int p = 0; p < s.packets; ++p) {
+          if (!packet_bits(rays, p)) continue;
+          __m256 tmin;
+          const uint32_t in = packet_enters_child<N>(node, c, s.pk[p], entering[p], tfar[p], tmin);
+          entered |= uint64_t{in} << (8 * p);
+          nearest = _mm256_min_ps(nearest, tmin);
         }
-        const __m256 tmin =
-            _mm256_max_ps(_mm256_max_ps(tn[0], tn[1]), _mm256_max_ps(tn[2], pk.tnear));
-        const __m256 tmax = _mm256_min_ps(_mm256_min_ps(_mm256_min_ps(tf[0], tf[1]), tf[2]), tfar);
-        const __m256 in = _mm256_and_ps(_mm256_cmp_ps(tmin, tmax, _CMP_LE_OQ), entering);
-        const uint32_t mask = static_cast<uint32_t>(_mm256_movemask_ps(in));
-        if (!mask) continue;
+        if (!entered) continue;
         kids[count] = node.child[c];
-        kid_mask[count] = mask;
-        kid_tmin[count] = _mm256_blendv_ps(inf, tmin, in);
-        kid_dist[count] = horizontal_min(kid_tmin[count]);
+        kid_rays[count] = entered;
+        kid_dist[count] = horizontal_min(nearest);
         ++count;
       }
       if (count == 0) break;
-      // Farthest first onto the stack (by the packet's nearest entry), continue with the nearest.
+      // Farthest first onto the stack, continue with the nearest.
       int order[N];
       for (int a = 0; a < count; ++a) {
         int b = a;
@@ -218,21 +363,28 @@ void traverse_packet(const TraversalContext& ctx, Packet& pk, uint32_t live) {
       }
       for (int a = 0; a < count - 1; ++a) {
         const int k = order[a];
-        stack[sp++] = {kids[k], kid_mask[k], kid_tmin[k]};
+        prefetch_block<N>(kids[k]);
+        stack[sp++] = {kids[k], kid_rays[k], kid_dist[k]};
       }
       const int nearest = order[count - 1];
       cur = kids[nearest];
-      cur_mask = kid_mask[nearest];
+      rays = kid_rays[nearest];
     }
     for (;;) {
       if (sp == 0) return;
-      const PacketEntry& e = stack[--sp];
-      // Rays that have since found a hit nearer than their own entry skip the box.
-      const uint32_t mask = e.mask & static_cast<uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(
-                                         e.dist, _mm256_load_ps(pk.tfar), _CMP_LE_OQ)));
-      if (mask) {
+      const StreamEntry& e = stack[--sp];
+      // Rays that have since found a hit nearer than every ray's entry skip the box.
+      uint64_t still = 0;
+      const __m256 dist = _mm256_set1_ps(e.dist);
+      for (int p = 0; p < s.packets; ++p) {
+        if (!packet_bits(e.rays, p)) continue;
+        const uint32_t nearer = static_cast<uint32_t>(
+            _mm256_movemask_ps(_mm256_cmp_ps(dist, _mm256_load_ps(s.pk[p].tfar), _CMP_LE_OQ)));
+        still |= uint64_t{packet_bits(e.rays, p) & nearer} << (8 * p);
+      }
+      if (still) {
         cur = e.ref;
-        cur_mask = mask;
+        rays = still;
         break;
       }
     }
@@ -240,18 +392,22 @@ void traverse_packet(const TraversalContext& ctx, Packet& pk, uint32_t live) {
 }
 
 template <int N>
-void intersect_batch_packets(const TraversalContext& ctx, const Kernels& single, const Ray* rays,
+void intersect_batch_streams(const TraversalContext& ctx, const Kernels& single, const Ray* rays,
                              size_t count, Hit* hits) {
   for (size_t i = 0; i < count; ++i) hits[i] = Hit{};
   if (ctx.root == kEmptyRef) return;
-  // Octant runs of 3 rays or fewer go ray by ray, as thinned-out packets do.
+  Stream s;  // once per batch: its 64 rays and hits are not cheap to construct
+  // Octant runs of 3 rays or fewer go ray by ray, as thinned-out streams do.
   for_each_octant_group(
-      rays, count, kPacketSize, kSwitchThreshold + 1,
+      rays, count, kPacketSize * kStreamPackets, kSwitchThreshold + 1,
       [&](const uint32_t* index, int n, int octant) {
-        Packet pk;
-        make_packet(rays, index, n, octant, pk);
-        traverse_packet<N>(ctx, pk, (1u << n) - 1);
-        for (int i = 0; i < n; ++i) hits[index[i]] = pk.hit[i];
+        s.packets = (n + kPacketSize - 1) / kPacketSize;
+        for (int p = 0; p < s.packets; ++p)
+          make_packet(rays, index + p * kPacketSize, std::min(kPacketSize, n - p * kPacketSize),
+                      octant, s.pk[p]);
+        make_frustum(s, s.frustum);
+        traverse_stream<N>(ctx, s, n == 64 ? ~uint64_t{0} : (uint64_t{1} << n) - 1);
+        for (int i = 0; i < n; ++i) hits[index[i]] = s.pk[i / kPacketSize].hit[i % kPacketSize];
       },
       [&](uint32_t i) { single.intersect(ctx, rays[i], hits[i]); });
 }
@@ -259,8 +415,8 @@ void intersect_batch_packets(const TraversalContext& ctx, const Kernels& single,
 }  // namespace
 
 IntersectBatchKernel select_coherent_batch_kernel(const TreeShape& shape) {
-  return batch_kernel_for<IntersectBatchKernel>(shape, &intersect_batch_packets<8>,
-                                                &intersect_batch_packets<4>);
+  return batch_kernel_for<IntersectBatchKernel>(shape, &intersect_batch_streams<8>,
+                                                &intersect_batch_streams<4>);
 }
 
 }  // namespace tuneray::bvh

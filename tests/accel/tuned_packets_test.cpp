@@ -16,14 +16,16 @@ namespace {
 
 // A pinhole camera's rays in pixel order, from `eye` through a grid around the axis `forward`;
 // the grid spans four direction octants, so the batch splits into several packet groups.
-std::vector<Ray> camera_rays(Vec3f eye, Vec3f forward, int width, int height, float tfar = kInf) {
+std::vector<Ray> camera_rays(Vec3f eye, Vec3f forward, int width, int height, float tfar = kInf,
+                             float half_extent = 0.7f) {
   const Vec3f up = std::fabs(forward.y) < 0.9f ? Vec3f(0, 1, 0) : Vec3f(1, 0, 0);
   const Vec3f right = normalize(cross(forward, up));
   const Vec3f down = cross(forward, right);
   std::vector<Ray> rays;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const float sx = -0.7f + 1.4f * (x + 0.5f) / width, sy = -0.7f + 1.4f * (y + 0.5f) / height;
+      const float sx = half_extent * (-1.0f + 2.0f * (x + 0.5f) / width);
+      const float sy = half_extent * (-1.0f + 2.0f * (y + 0.5f) / height);
       rays.push_back(Ray{eye, 0, normalize(forward + right * sx + down * sy), tfar});
     }
   return rays;
@@ -42,6 +44,35 @@ TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
     tuned.build(mesh.view());
     const size_t hits = expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent);
     // Both hits and misses, or the comparison means little.
+    EXPECT_GT(hits, rays.size() / 4);
+    EXPECT_LT(hits, rays.size());
+  }
+}
+
+// A stream's frustum culls a node's children for all its rays at once; it must never cull a box
+// one of them enters. Narrow views (rays of a stream nearly parallel, so the frustum is tight)
+// onto a finely tessellated cube, whose triangles lie on the faces of their leaves' boxes: the
+// rays at a frustum's edge enter boxes by a hair.
+TEST(TunedPackets, TheStreamFrustumNeverCullsABoxARayEnters) {
+  const Mesh cube = make_grid_box(48);
+  std::vector<Ray> rays;
+  const Vec3f eyes[] = {Vec3f(-1.3f, -1.1f, -1.7f), Vec3f(1.4f, 0.9f, -1.2f),
+                        Vec3f(0.3f, 1.6f, 1.1f)};
+  for (const Vec3f& eye : eyes) {
+    // Aimed at points near the cube's edges and corners, where faces meet.
+    for (const Vec3f target : {Vec3f(-0.5f, -0.5f, -0.45f), Vec3f(0.5f, 0.2f, -0.5f),
+                               Vec3f(0.1f, 0.5f, 0.5f), Vec3f(0.02f, -0.03f, 0.01f)}) {
+      const std::vector<Ray> view = camera_rays(eye, normalize(target - eye), 256, 12, kInf, 0.03f);
+      rays.insert(rays.end(), view.begin(), view.end());
+    }
+  }
+  for (const char* text :
+       {"branching=8,sah_block_size=4,min_leaf=4,max_leaf=28", "branching=4,max_leaf=2",
+        "branching=8,max_leaf=1", "branching=2,collapse=1"}) {
+    SCOPED_TRACE(text);
+    TunedBvhAccel tuned(parse_bvh_config(text));
+    tuned.build(cube.view());
+    const size_t hits = expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent);
     EXPECT_GT(hits, rays.size() / 4);
     EXPECT_LT(hits, rays.size());
   }
