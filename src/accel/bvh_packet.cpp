@@ -184,8 +184,8 @@ struct Frustum {
 constexpr float kFrustumSlack = 0x1p-18f;
 
 // Children of `node` that some ray of the frustum may enter: a child whose box the frustum's
-// bounds place outside every ray's [tnear, tfar] is culled. Exact for no ray; conservative for
-// all (each bound is padded by kFrustumSlack of its terms' magnitude).
+// bounds place outside every ray's [tnear, tfar] is culled. Loose, but conservative for every
+// ray (each bound is padded by kFrustumSlack of its terms' magnitude).
 template <int N>
 int frustum_children(const FastNode<N>& node, const Frustum& f) {
   using L = LanesOf<N>;
