@@ -1,6 +1,6 @@
 // The single-ray traversal of the tuned BVH as inline templates, shared by the single-ray
-// kernels (bvh_traverse.cpp) and the packet kernels (bvh_packet.cpp), which hand rays over to it
-// when a packet thins out and use its leaf tests so both give the same hits bit for bit.
+// kernels (bvh_traverse.cpp) and the camera-ray streams (bvh_packet.cpp), which hand rays over to
+// it when a stream thins out and use its leaf tests so both give the same hits bit for bit.
 // Internal to src/accel.
 #pragma once
 
