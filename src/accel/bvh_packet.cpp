@@ -90,11 +90,19 @@ inline __m256 lanes_of(uint32_t mask) {
   return _mm256_castsi256_ps(_mm256_cmpeq_epi32(selected, bits));
 }
 
-inline float horizontal_min(__m256 v) {
-  __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
-  m = _mm_min_ps(m, _mm_movehl_ps(m, m));
-  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+// The 8 lanes of `v` folded by `op` (_mm_min_ps or _mm_max_ps).
+template <__m128 (*op)(__m128, __m128)>
+inline float horizontal(__m256 v) {
+  __m128 m = op(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+  m = op(m, _mm_movehl_ps(m, m));
+  m = op(m, _mm_shuffle_ps(m, m, 1));
   return _mm_cvtss_f32(m);
+}
+inline float horizontal_min(__m256 v) {
+  return horizontal<_mm_min_ps>(v);
+}
+inline float horizontal_max(__m256 v) {
+  return horizontal<_mm_max_ps>(v);
 }
 
 // One triangle (lane `j` of a pack) against the rays of `active`: the Möller-Trumbore test of
@@ -175,7 +183,7 @@ inline void intersect_leaf_packet(NodeRef leaf, Packet& pk, uint32_t mask) {
 struct Frustum {
   bool valid = false;  // false: a non-finite term; every child goes on to the rays' own tests
   float inv_lo[3], inv_hi[3], oi_lo[3], oi_hi[3], inv_abs[3], oi_abs[3];
-  float tnear_lo, tfar_hi;
+  float tnear_lo;  // no far bound: camera rays have none, and a NaN one would hide the others'
   int near_row[3], far_row[3];
 };
 
@@ -184,13 +192,13 @@ struct Frustum {
 constexpr float kFrustumSlack = 0x1p-18f;
 
 // Children of `node` that some ray of the frustum may enter: a child whose box the frustum's
-// bounds place outside every ray's [tnear, tfar] is culled. Loose, but conservative for every
+// bounds place outside every ray's [tnear, inf) is culled. Loose, but conservative for every
 // ray (each bound is padded by kFrustumSlack of its terms' magnitude).
 template <int N>
 int frustum_children(const FastNode<N>& node, const Frustum& f) {
   using L = LanesOf<N>;
   using V = typename L::V;
-  V tmin = L::set1(f.tnear_lo), tmax = L::set1(f.tfar_hi);
+  V tmin = L::set1(f.tnear_lo), tmax = L::set1(std::numeric_limits<float>::infinity());
   const V sign = L::set1(-0.0f);
   for (int a = 0; a < 3; ++a) {
     const V near = L::load(node.bounds[f.near_row[a]]), far = L::load(node.bounds[f.far_row[a]]);
@@ -210,6 +218,8 @@ int frustum_children(const FastNode<N>& node, const Frustum& f) {
 
 // Up to 8 packets (64 rays) of one octant; ray i of the stream is lane i % 8 of packet i / 8.
 constexpr int kStreamPackets = 8;
+constexpr int kStreamSize = kPacketSize * kStreamPackets;
+static_assert(kStreamSize == 64, "a stream's rays are the bits of a uint64_t");
 struct Stream {
   Packet pk[kStreamPackets];
   int packets = 0;
@@ -217,14 +227,7 @@ struct Stream {
 };
 
 inline uint32_t packet_bits(uint64_t rays, int p) {
-  return static_cast<uint32_t>(rays >> (8 * p)) & 0xffu;
-}
-
-inline float horizontal_max(__m256 v) {
-  __m128 m = _mm_max_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
-  m = _mm_max_ps(m, _mm_movehl_ps(m, m));
-  m = _mm_max_ss(m, _mm_shuffle_ps(m, m, 1));
-  return _mm_cvtss_f32(m);
+  return static_cast<uint32_t>(rays >> (kPacketSize * p)) & ((1u << kPacketSize) - 1);
 }
 
 // From the packets' lanes: padding lanes repeat a ray of their packet, so they widen nothing.
@@ -262,8 +265,6 @@ void make_frustum(const Stream& s, Frustum& f) {
     f.far_row[a] = s.pk[0].far_row[a];
   }
   f.tnear_lo = horizontal_min(tnear_lo);
-  // No far bound: camera rays have none, and a NaN one would hide the others' from a max.
-  f.tfar_hi = std::numeric_limits<float>::infinity();
   f.valid =
       _mm256_movemask_ps(_mm256_cmp_ps(finite_terms, _mm256_setzero_ps(), _CMP_EQ_OQ)) == 0xff;
 }
@@ -341,7 +342,7 @@ void traverse_stream(const TraversalContext& ctx, Stream& s, uint64_t live) {
           if (!packet_bits(rays, p)) continue;
           __m256 tmin;
           const uint32_t in = packet_enters_child<N>(node, c, s.pk[p], entering[p], tfar[p], tmin);
-          entered |= uint64_t{in} << (8 * p);
+          entered |= uint64_t{in} << (kPacketSize * p);
           nearest = _mm256_min_ps(nearest, tmin);
         }
         if (!entered) continue;
@@ -380,7 +381,7 @@ void traverse_stream(const TraversalContext& ctx, Stream& s, uint64_t live) {
         if (!packet_bits(e.rays, p)) continue;
         const uint32_t nearer = static_cast<uint32_t>(
             _mm256_movemask_ps(_mm256_cmp_ps(dist, _mm256_load_ps(s.pk[p].tfar), _CMP_LE_OQ)));
-        still |= uint64_t{packet_bits(e.rays, p) & nearer} << (8 * p);
+        still |= uint64_t{packet_bits(e.rays, p) & nearer} << (kPacketSize * p);
       }
       if (still) {
         cur = e.ref;
@@ -399,14 +400,14 @@ void intersect_batch_streams(const TraversalContext& ctx, const Kernels& single,
   Stream s;  // once per batch: its 64 rays and hits are not cheap to construct
   // Octant runs of 3 rays or fewer go ray by ray, as thinned-out streams do.
   for_each_octant_group(
-      rays, count, kPacketSize * kStreamPackets, kSwitchThreshold + 1,
+      rays, count, kStreamSize, kSwitchThreshold + 1,
       [&](const uint32_t* index, int n, int octant) {
         s.packets = (n + kPacketSize - 1) / kPacketSize;
         for (int p = 0; p < s.packets; ++p)
           make_packet(rays, index + p * kPacketSize, std::min(kPacketSize, n - p * kPacketSize),
                       octant, s.pk[p]);
         make_frustum(s, s.frustum);
-        traverse_stream<N>(ctx, s, n == 64 ? ~uint64_t{0} : (uint64_t{1} << n) - 1);
+        traverse_stream<N>(ctx, s, n == kStreamSize ? ~uint64_t{0} : (uint64_t{1} << n) - 1);
         for (int i = 0; i < n; ++i) hits[index[i]] = s.pk[i / kPacketSize].hit[i % kPacketSize];
       },
       [&](uint32_t i) { single.intersect(ctx, rays[i], hits[i]); });

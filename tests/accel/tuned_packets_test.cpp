@@ -31,6 +31,21 @@ std::vector<Ray> camera_rays(Vec3f eye, Vec3f forward, int width, int height, fl
   return rays;
 }
 
+// For each tree configuration: the coherent batch gets the single-ray hits, and it has both hits
+// and misses (or the comparison means little).
+template <class Configs>
+void expect_streams_match_single_rays(const Mesh& mesh, const std::vector<Ray>& rays,
+                                      const Configs& configs) {
+  for (const char* text : configs) {
+    SCOPED_TRACE(text);
+    TunedBvhAccel tuned(parse_bvh_config(text));
+    tuned.build(mesh.view());
+    const size_t hits = expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent);
+    EXPECT_GT(hits, rays.size() / 4);
+    EXPECT_LT(hits, rays.size());
+  }
+}
+
 TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
   const Mesh mesh = make_soup(4000, 11, 0.08f);
   std::vector<Ray> rays = camera_rays(Vec3f(0.5f, 0.45f, -1.5f), Vec3f(0, 0, 1), 64, 48);
@@ -38,15 +53,7 @@ TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
   const std::vector<Ray> inside =
       camera_rays(Vec3f(0.52f, 0.5f, 0.6f), normalize(Vec3f(0.2f, -0.1f, -1)), 48, 40, 0.35f);
   rays.insert(rays.end(), inside.begin(), inside.end());
-  for (const char* text : kBatchKernelConfigs) {
-    SCOPED_TRACE(text);
-    TunedBvhAccel tuned(parse_bvh_config(text));
-    tuned.build(mesh.view());
-    const size_t hits = expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent);
-    // Both hits and misses, or the comparison means little.
-    EXPECT_GT(hits, rays.size() / 4);
-    EXPECT_LT(hits, rays.size());
-  }
+  expect_streams_match_single_rays(mesh, rays, kBatchKernelConfigs);
 }
 
 // A stream's frustum culls a node's children for all its rays at once; it must never cull a box
@@ -66,16 +73,10 @@ TEST(TunedPackets, TheStreamFrustumNeverCullsABoxARayEnters) {
       rays.insert(rays.end(), view.begin(), view.end());
     }
   }
-  for (const char* text :
-       {"branching=8,sah_block_size=4,min_leaf=4,max_leaf=28", "branching=4,max_leaf=2",
-        "branching=8,max_leaf=1", "branching=2,collapse=1"}) {
-    SCOPED_TRACE(text);
-    TunedBvhAccel tuned(parse_bvh_config(text));
-    tuned.build(cube.view());
-    const size_t hits = expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent);
-    EXPECT_GT(hits, rays.size() / 4);
-    EXPECT_LT(hits, rays.size());
-  }
+  const char* const configs[] = {"branching=8,sah_block_size=4,min_leaf=4,max_leaf=28",
+                                 "branching=4,max_leaf=2", "branching=8,max_leaf=1",
+                                 "branching=2,collapse=1"};
+  expect_streams_match_single_rays(cube, rays, configs);
 }
 
 TEST(TunedPackets, EqualDistancesGoToTheLowerTriangleOnBothPaths) {
