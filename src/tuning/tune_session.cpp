@@ -130,8 +130,10 @@ TuneReport run_tune_session(const TuneOptions& o,
     r.chosen_ms = c.cost_ms(names[2]);
     const RatioInterval speedup = c.ratio(names[0], names[2]);
     const RatioInterval vs_native = c.ratio(names[1], names[2]);
+    r.speedup_ratio = speedup.ratio;
     r.speedup_low = speedup.low;
     r.speedup_high = speedup.high;
+    r.vs_native_ratio = vs_native.ratio;
     r.vs_native_low = vs_native.low;
     r.vs_native_high = vs_native.high;
     r.compare_rounds = c.rounds();

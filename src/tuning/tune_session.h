@@ -56,14 +56,18 @@ struct CameraTuneResult {
   int camera = 0;
   std::string mode;  // "search" or "exploit"
   int frames = 0;
-  // Geometric means over the same interleaved rounds, so two of them divide to exactly their
-  // paired ratio (a configuration that is two of these is measured once and given to both).
+  // Costs over the same interleaved rounds, in the units of the default's median
+  // (EvalComparison::cost_ms); a configuration that is two of these is measured once and given
+  // to both.
   double default_ms = 0;  // the default configuration (Embree's recommended, tuned BVH)
   double chosen_ms = 0;   // the configuration the tuner settled on
   double native_ms = 0;   // native Embree as `render --accel native` builds it
-  // 95 % intervals of speedup() and vs_native() (exactly 1 for a configuration and itself).
-  double speedup_low = 0, speedup_high = 0;
-  double vs_native_low = 0, vs_native_high = 0;
+  // speedup() and vs_native(): medians of the per-round ratios, each with its 95 % interval
+  // (exactly 1 for a configuration and itself). Medians are not transitive, so native_ms /
+  // chosen_ms can differ from vs_native() by the noise of the rounds, and even fall outside its
+  // interval; the paired ratio is the estimate.
+  double speedup_ratio = 0, speedup_low = 0, speedup_high = 0;
+  double vs_native_ratio = 0, vs_native_low = 0, vs_native_high = 0;
   int compare_rounds = 0;
   bool compare_within_target = false;  // every interval within ±compare_target before the cap
   double accumulated_ms = 0;           // sum of the costs of all search frames at this camera
@@ -76,8 +80,8 @@ struct CameraTuneResult {
   std::string config;   // chosen configuration (backend and BVH, then work sizes if tuned)
   std::string backend;  // of the chosen configuration: "tuned" or "native"
   bool converged = false;
-  double speedup() const { return chosen_ms > 0 ? default_ms / chosen_ms : 0.0; }
-  double vs_native() const { return chosen_ms > 0 ? native_ms / chosen_ms : 0.0; }
+  double speedup() const { return speedup_ratio; }
+  double vs_native() const { return vs_native_ratio; }
 };
 
 struct TuneReport {

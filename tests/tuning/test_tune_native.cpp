@@ -70,8 +70,10 @@ TEST(TuneNative, EverySearchMeasuresNativeAndTheReportHasIt) {
   EXPECT_GT(c.default_ms, 0.0);
   EXPECT_GT(c.native_ms, 0.0);
   EXPECT_GT(c.chosen_ms, 0.0);
-  EXPECT_DOUBLE_EQ(c.vs_native(), c.native_ms / c.chosen_ms);
+  // Costs are in the default's units, so the default's ratio to any configuration is exactly
+  // their paired ratio; native's to the chosen one is its own median of the per-round ratios.
   EXPECT_DOUBLE_EQ(c.speedup(), c.default_ms / c.chosen_ms);
+  EXPECT_GT(c.vs_native(), 0.0);
   // Interleaved rounds from baseline_repeats to the cap, each ratio inside its interval.
   EXPECT_GE(c.compare_rounds, o.baseline_repeats);
   EXPECT_LE(c.compare_rounds, o.compare_max_rounds);
