@@ -29,6 +29,9 @@ CommandAction add_bench_command(CLI::App& app) {
   r->add_option("--max-bounces", render->max_bounces, "Path length")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
+  r->add_option("--accel", render->accel, "Our acceleration structure backend")
+      ->capture_default_str();
+  r->add_option("--bvh", render->bvh, "Backend parameters key=value,... (see docs/bvh.md)");
   r->add_option("--json", render->json, "Write results as JSON");
   r->add_option("--scenes-dir", render->scenes_dir, "Folder of the shared scenes");
   r->add_flag("!--no-embree", render->embree_reference, "Skip Embree's reference pathtracer");

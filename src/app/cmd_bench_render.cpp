@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "accel/factory.h"
 #include "app/commands.h"
 #include "bench/scene_paths.h"
 #include "image/atomic_file.h"
@@ -17,7 +18,8 @@ namespace {
 
 void print_embree(const EmbreeComparison& c) {
   fmt::print("  {:<12} {:>10} {:>12}\n", "", "frame ms", "Mrays/s*");
-  fmt::print("  {:<12} {:>10.1f} {:>12.2f}\n", "tuneray", c.our_frame_ms, c.our_mrays);
+  fmt::print("  {:<12} {:>10.1f} {:>12.2f}  {}\n", "tuneray", c.our_frame_ms, c.our_mrays,
+             c.our_accel);
   fmt::print("  {:<12} {:>10.1f} {:>12.2f}\n", "embree", c.embree_frame_ms, c.embree_mrays);
   fmt::print("  speed ratio tuneray/embree (frame time) = {:.2f}\n", c.speed_ratio());
   fmt::print("  * each program counts rays its own way; compare frame times.\n");
@@ -26,22 +28,26 @@ void print_embree(const EmbreeComparison& c) {
 }  // namespace
 
 int run_bench_render(const RenderBenchOptions& a) {
+  make_accel(a.accel, a.bvh);  // a bad backend or parameter fails before any table is printed
   LoadOptions load_options;
   load_options.scenes_dir = find_shared_scenes_dir(a.scenes_dir);
   nlohmann::json json = {{"size", std::to_string(a.width) + "x" + std::to_string(a.height)},
                          {"spp", a.spp},
                          {"repeats", a.repeats},
                          {"max_bounces", a.max_bounces},
+                         {"accel", a.accel},
+                         {"bvh", a.bvh},
                          {"scenes", nlohmann::json::array()}};
-  fmt::print("{:<28} {:>10} {:>10} {:>11} {:>9}\n", "scene", "triangles", "build ms", "ms per spp",
-             "Mrays/s");
+  fmt::print("{:<28} {:>10} {:>10} {:>11} {:>9}  {}\n", "scene", "triangles", "build ms",
+             "ms per spp", "Mrays/s", "accel");
   for (const std::string& spec : render_bench_scenes(a)) {
     Scene scene = load_scene(spec, load_options);
     std::string name = std::filesystem::path(spec).stem().string();
     RenderSpeed r = measure_render_speed(name, scene, a, a.spp);
-    fmt::print("{:<28} {:>10} {:>10.1f} {:>11.2f} {:>9.2f}\n", r.scene, r.triangles, r.build_ms,
-               r.ms_per_spp, r.mrays);
+    fmt::print("{:<28} {:>10} {:>10.1f} {:>11.2f} {:>9.2f}  {}\n", r.scene, r.triangles, r.build_ms,
+               r.ms_per_spp, r.mrays, r.accel);
     json["scenes"].push_back({{"scene", r.scene},
+                              {"accel", r.accel},
                               {"triangles", r.triangles},
                               {"build_ms", r.build_ms},
                               {"ms_per_spp", r.ms_per_spp},
@@ -57,6 +63,7 @@ int run_bench_render(const RenderBenchOptions& a) {
     } else {
       print_embree(c);
       json["embree_reference"] = {{"spp", c.spp},
+                                  {"tuneray_accel", c.our_accel},
                                   {"tuneray_frame_ms", c.our_frame_ms},
                                   {"embree_frame_ms", c.embree_frame_ms},
                                   {"tuneray_mrays", c.our_mrays},

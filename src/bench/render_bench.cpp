@@ -23,7 +23,7 @@ std::vector<std::string> render_bench_scenes(const RenderBenchOptions& options) 
 
 RenderSpeed measure_render_speed(const std::string& name, const Scene& scene,
                                  const RenderBenchOptions& a, int spp) {
-  std::unique_ptr<Accel> accel = make_accel("native", "");
+  std::unique_ptr<Accel> accel = make_accel(a.accel, a.bvh);
   BuildStats build = accel->build({scene.positions.data(), scene.positions.size(),
                                    scene.triangles.data(), scene.triangles.size()});
   RenderSettings settings;
@@ -40,7 +40,14 @@ RenderSpeed measure_render_speed(const std::string& name, const Scene& scene,
     ms.push_back(p.render_ms / spp);
     mrays.push_back(p.mrays_per_s());
   }
-  return {name, scene.triangles.size(), build.build_ms, median(ms), median(mrays)};
+  RenderSpeed r;
+  r.scene = name;
+  r.accel = accel->name() + " " + accel->describe();
+  r.triangles = scene.triangles.size();
+  r.build_ms = build.build_ms;
+  r.ms_per_spp = median(ms);
+  r.mrays = median(mrays);
+  return r;
 }
 
 EmbreeComparison compare_with_embree(const RenderBenchOptions& a) {
@@ -60,6 +67,7 @@ EmbreeComparison compare_with_embree(const RenderBenchOptions& a) {
   }
   RenderSpeed ours = measure_render_speed("embree-cornell", embree_cornell_scene(peer), a, c.spp);
   c.ok = true;
+  c.our_accel = ours.accel;
   c.our_frame_ms = ours.ms_per_spp * c.spp;
   c.embree_frame_ms = embree.frame_ms;
   c.our_mrays = ours.mrays;

@@ -15,6 +15,10 @@ struct RenderBenchOptions {
   int spp = 4;
   int repeats = 5;
   int max_bounces = 3;
+  // Our backend and its parameters, as `render --accel/--bvh` take them; native is the render
+  // command's default.
+  std::string accel = "native";
+  std::string bvh;
   bool embree_reference = true;
   std::string json;
   std::string scenes_dir;
@@ -25,13 +29,16 @@ std::vector<std::string> render_bench_scenes(const RenderBenchOptions& options);
 
 struct RenderSpeed {
   std::string scene;
+  std::string accel;  // the backend's name and configuration as it describes itself
   size_t triangles = 0;
   double build_ms = 0;
   double ms_per_spp = 0;  // median over repeats
   double mrays = 0;       // closest-hit + shadow rays per second, median over repeats
 };
 
-// Native Embree, PCG, tiles: one warm-up pass, then `repeats` passes of `spp` samples.
+// The options' backend, PCG samples, the default (wavefront) scheduler: one warm-up pass, then
+// `repeats` passes of `spp` samples. Throws std::invalid_argument on an unknown backend or
+// parameter.
 RenderSpeed measure_render_speed(const std::string& name, const Scene& scene,
                                  const RenderBenchOptions& options, int spp);
 
@@ -41,6 +48,7 @@ struct EmbreeComparison {
   bool ok = false;
   std::string error;
   int spp = 16;
+  std::string our_accel;  // RenderSpeed::accel of our run
   double our_frame_ms = 0, embree_frame_ms = 0;
   double our_mrays = 0, embree_mrays = 0;  // each program counts rays its own way
   double speed_ratio() const { return embree_frame_ms / our_frame_ms; }
