@@ -23,6 +23,9 @@ class BlueNoiseSampler final : public Sampler {
   std::unique_ptr<Sampler> clone() const override {
     return std::make_unique<BlueNoiseSampler>(*this);
   }
+  std::unique_ptr<SamplerBank> make_bank() const override {
+    return std::make_unique<SamplerBankOf<BlueNoiseSampler>>(*this);
+  }
 
  private:
   const BlueNoiseTables* tables_;

@@ -39,6 +39,155 @@ LightSampler::LightSampler(const Scene& scene, const EnvironmentLight& environme
     weights.push_back(env_weight);
   }
   if (!weights.empty()) selection_ = Distribution1D(weights);
+
+  Planes& q = planes_;
+  const size_t n = selection_.size();
+  for (auto* v : {&q.px, &q.py, &q.pz, &q.e1x, &q.e1y, &q.e1z, &q.e2x, &q.e2y, &q.e2z, &q.nx, &q.ny,
+                  &q.nz, &q.area, &q.rx, &q.ry, &q.rz, &q.pmf, &q.cdf})
+    v->assign(n, 0.0f);
+  q.two_sided.assign(n, 0);
+  for (size_t j = 0; j < n; ++j) {
+    q.pmf[j] = selection_.pmf(j);
+    q.cdf[j] = selection_.cdf(j);
+    Vec3f position, e1, e2, normal, radiance;
+    if (j < emissive_.size()) {
+      const EmissiveTriangle& et = emissive_[j];
+      const Material& m = scene.materials[scene.material_ids[et.prim]];
+      position = et.p0;
+      e1 = et.edge1;
+      e2 = et.edge2;
+      normal = et.normal;
+      radiance = material_emission(scene, et.prim);
+      q.area[j] = et.area;
+      q.two_sided[j] = m.two_sided_emission ? -1 : 0;
+    } else if (j < env_index_) {
+      const PointLight& pl = scene.point_lights[j - point_begin_];
+      position = pl.position;
+      radiance = pl.intensity * scene.light_scale;
+    }
+    q.px[j] = position.x, q.py[j] = position.y, q.pz[j] = position.z;
+    q.e1x[j] = e1.x, q.e1y[j] = e1.y, q.e1z[j] = e1.z;
+    q.e2x[j] = e2.x, q.e2y[j] = e2.y, q.e2z[j] = e2.z;
+    q.nx[j] = normal.x, q.ny[j] = normal.y, q.nz[j] = normal.z;
+    q.rx[j] = radiance.x, q.ry[j] = radiance.y, q.rz[j] = radiance.z;
+  }
+}
+
+namespace {
+simd::F8 gather(const std::vector<float>& table, simd::I8 index) {
+  return simd::F8(_mm256_i32gather_ps(table.data(), index.v, 4));
+}
+}  // namespace
+
+LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F8 u0, simd::F8 u1,
+                                   uint32_t lanes) const {
+  using simd::F8;
+  using simd::I8;
+  using simd::M8;
+  using simd::V8;
+  LightSample8 ls;
+  ls.pdf = F8(0.0f);
+  ls.distance = F8(0.0f);
+  ls.wi = V8(F8(0.0f));
+  ls.radiance = V8(F8(0.0f));
+  ls.is_delta = M8::none();
+  if (empty() || !lanes) return ls;
+
+  // The bin: sample_discrete's count of the bins starting at or below u, or its search.
+  const size_t n = selection_.size();
+  I8 index(0);
+  if (n <= Distribution1D::kLinearSearchBins) {
+    for (size_t j = 1; j < n; ++j) {
+      const M8 at_or_below = F8(planes_.cdf[j]) <= u_select;
+      index = index + I8(_mm256_srli_epi32(_mm256_castps_si256(at_or_below.v), 31));
+    }
+  } else {
+    alignas(32) int32_t bins[simd::kLanes] = {};
+    alignas(32) float u[simd::kLanes];
+    u_select.store(u);
+    for (uint32_t m = lanes; m; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      bins[i] = static_cast<int32_t>(selection_.sample_discrete(u[i], nullptr));
+    }
+    index = I8::load(bins);
+  }
+  // Lanes outside `lanes` read bin 0, which exists; their results are discarded.
+  index = simd::select(M8::from_bits(lanes), index, I8(0));
+  const F8 pmf = gather(planes_.pmf, index);
+  M8 ok = M8::from_bits(lanes) & (pmf > F8(0.0f));
+
+  const M8 is_env =
+      ok & (index == I8(static_cast<int32_t>(env_index_ == SIZE_MAX ? -1 : env_index_)));
+  const M8 is_point = ok.and_not(is_env) & (index >= I8(static_cast<int32_t>(point_begin_)));
+  const M8 is_triangle = ok.and_not(is_env | is_point);
+
+  const V8 position(gather(planes_.px, index), gather(planes_.py, index),
+                    gather(planes_.pz, index));
+  const V8 radiance(gather(planes_.rx, index), gather(planes_.ry, index),
+                    gather(planes_.rz, index));
+  V8 target = position;
+  if (is_triangle.any()) {
+    // sample_uniform_triangle, then the point on the triangle.
+    const M8 upper = u1 > u0;
+    const F8 b0 = simd::select(upper, 0.5f * u0, u0 - 0.5f * u1);
+    const F8 b1 = simd::select(upper, u1 - 0.5f * u0, 0.5f * u1);
+    const F8 bx = b1, by = 1.0f - b0 - b1;
+    const V8 e1(gather(planes_.e1x, index), gather(planes_.e1y, index), gather(planes_.e1z, index));
+    const V8 e2(gather(planes_.e2x, index), gather(planes_.e2y, index), gather(planes_.e2z, index));
+    target = simd::select(is_triangle, position + e1 * bx + e2 * by, position);
+  }
+  const V8 d = target - p;
+  const F8 dist2 = dot(d, d);
+  ok &= dist2 > F8(0.0f);
+  const F8 distance = sqrt(dist2);
+  const V8 wi = d * (1.0f / distance);
+  const M8 points = is_point & ok;
+  ls.wi = keep(points, wi);
+  ls.distance = keep(points, distance);
+  ls.radiance = keep(points, radiance * (1.0f / dist2));
+  ls.pdf = keep(points, pmf);
+  ls.is_delta = points;
+
+  const M8 triangles = is_triangle & ok;
+  if (triangles.any()) {
+    const V8 normal(gather(planes_.nx, index), gather(planes_.ny, index),
+                    gather(planes_.nz, index));
+    const F8 cos_signed = dot(normal, wi);
+    const F8 cos_light = simd::abs(cos_signed);
+    const M8 lit = triangles & (cos_light > F8(1e-7f));
+    // emitted(): one-sided emitters light only the side their normal faces (dot(n, -wi) > 0).
+    const M8 two_sided(
+        _mm256_castsi256_ps(_mm256_i32gather_epi32(planes_.two_sided.data(), index.v, 4)));
+    const M8 facing = two_sided | (dot(normal, -wi) > F8(0.0f));
+    const F8 area = gather(planes_.area, index);
+    ls.wi = simd::select(lit, wi, ls.wi);
+    ls.distance = simd::select(lit, distance, ls.distance);
+    ls.radiance = simd::select(lit, keep(facing, radiance), ls.radiance);
+    ls.pdf = simd::select(lit, pmf * dist2 / (cos_light * area), ls.pdf);
+  }
+
+  if (is_env.any()) {
+    alignas(32) float ua[simd::kLanes], ub[simd::kLanes], pm[simd::kLanes];
+    u0.store(ua);
+    u1.store(ub);
+    pmf.store(pm);
+    alignas(32) float wx[8], wy[8], wz[8], rx[8], ry[8], rz[8], pdf[8];
+    ls.wi.x.store(wx), ls.wi.y.store(wy), ls.wi.z.store(wz);
+    ls.radiance.x.store(rx), ls.radiance.y.store(ry), ls.radiance.z.store(rz);
+    ls.pdf.store(pdf);
+    for (uint32_t m = is_env.bits(); m; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      EnvironmentSample es = environment_.sample({ua[i], ub[i]});
+      wx[i] = es.wi.x, wy[i] = es.wi.y, wz[i] = es.wi.z;
+      rx[i] = es.radiance.x, ry[i] = es.radiance.y, rz[i] = es.radiance.z;
+      pdf[i] = es.pdf * pm[i];
+    }
+    ls.wi = V8(F8::load(wx), F8::load(wy), F8::load(wz));
+    ls.radiance = V8(F8::load(rx), F8::load(ry), F8::load(rz));
+    ls.pdf = F8::load(pdf);
+    ls.distance = simd::select(is_env, F8(kInf), ls.distance);
+  }
+  return ls;
 }
 
 LightSample LightSampler::sample(Vec3f p, float u_select, Vec2f u) const {

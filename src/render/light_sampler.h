@@ -8,6 +8,7 @@
 #include "math/vec.h"
 #include "render/environment_light.h"
 #include "render/sampling.h"
+#include "render/simd8.h"
 #include "scene/scene.h"
 
 namespace tuneray {
@@ -20,6 +21,16 @@ struct LightSample {
   bool is_delta = false;
 };
 
+// Eight light samples: lane i is what LightSampler::sample gives for lane i's inputs (to float
+// rounding); a lane that got no sample has pdf 0.
+struct LightSample8 {
+  simd::V8 wi;
+  simd::F8 distance;
+  simd::V8 radiance;
+  simd::F8 pdf;
+  simd::M8 is_delta;
+};
+
 class LightSampler {
  public:
   LightSampler(const Scene& scene, const EnvironmentLight& environment);
@@ -27,6 +38,10 @@ class LightSampler {
   bool empty() const { return selection_.size() == 0; }
   // u_select picks the light, u the point on it.
   LightSample sample(Vec3f p, float u_select, Vec2f u) const;
+  // sample() for the lanes in `lanes` (bit i = lane i) at once: point and triangle lights in
+  // SIMD lanes, the environment lane by lane.
+  LightSample8 sample8(const simd::V8& p, simd::F8 u_select, simd::F8 u0, simd::F8 u1,
+                       uint32_t lanes) const;
   // Solid-angle pdf of having sampled `light_point` on emissive triangle `prim` from p (for MIS
   // when a BSDF-sampled ray hits an emitter).
   float pdf_triangle(uint32_t prim, Vec3f p, Vec3f light_point, Vec3f light_normal) const;
@@ -48,6 +63,19 @@ class LightSampler {
   const Scene& scene_;
   const EnvironmentLight& environment_;
   std::vector<EmissiveTriangle> emissive_;
+  // The same lights as planes for sample8's gathers: entry j is selection bin j (triangles and
+  // point lights; the environment's bin has zeros). Radiance/intensity include light_scale.
+  struct Planes {
+    std::vector<float> px, py, pz;     // triangle p0 / point position
+    std::vector<float> e1x, e1y, e1z;  // triangle edges (point lights: 0)
+    std::vector<float> e2x, e2y, e2z;
+    std::vector<float> nx, ny, nz;   // triangle unit normal
+    std::vector<float> area;         // triangle area
+    std::vector<float> rx, ry, rz;   // emission (triangles) or intensity (points)
+    std::vector<int32_t> two_sided;  // -1 (all bits) when the triangle emits on both sides
+    std::vector<float> pmf;          // selection probability
+    std::vector<float> cdf;          // selection CDF starts: cdf[j] = P(bin < j)
+  } planes_;
   std::vector<int32_t> emissive_index_of_prim_;  // -1 when not emissive
   Distribution1D selection_;                     // [emissive..., point lights..., environment]
   size_t point_begin_ = 0, env_index_ = SIZE_MAX;

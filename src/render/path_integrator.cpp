@@ -10,31 +10,17 @@
 namespace tuneray {
 
 namespace {
-// A frame facing the side of the surface that `wo` is on, so opaque BSDFs (defined on the upper
-// hemisphere) work for two-sided geometry. Dielectrics keep the frame: they need the sign.
-Frame facing_frame(const SurfaceInteraction& si, Vec3f wo, bool flip, Vec3f* ng) {
-  Frame f = si.shading;
-  *ng = si.geometric_normal;
-  if (flip && dot(*ng, wo) < 0) {
-    *ng = -*ng;
-    f = Frame(f.s, -f.t, -f.n);
-  }
-  // Interpolated normals can put wo below the shading hemisphere; the geometric frame is then
-  // the better answer than a black pixel.
-  if (flip && dot(f.n, wo) <= 1e-6f) f = Frame::from_normal_tangent(*ng, f.s);
-  return f;
-}
-
 uint64_t now_ns() {
   return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
                                    std::chrono::steady_clock::now().time_since_epoch())
                                    .count());
 }
+}  // namespace
 
-// Path-space regularization: a lobe may not be sharper than the roughest vertex before it, so
-// paths such as diffuse -> mirror -> light become sampleable by light sampling. Lambert counts
-// as roughness 1; a mirror behind a rough vertex turns into a GGX conductor of that roughness.
-void regularize(BsdfParams& bsdf, float& max_roughness) {
+// A lobe may not be sharper than the roughest vertex before it, so paths such as diffuse ->
+// mirror -> light become sampleable by light sampling. Lambert counts as roughness 1; a mirror
+// behind a rough vertex turns into a GGX conductor of that roughness.
+void PathIntegrator::regularize(BsdfParams& bsdf, float& max_roughness) {
   float own = 0;
   switch (bsdf.type) {
     case MaterialType::kLambert:
@@ -58,7 +44,6 @@ void regularize(BsdfParams& bsdf, float& max_roughness) {
   }
   max_roughness = std::max(max_roughness, own);
 }
-}  // namespace
 
 PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
                                const RenderSettings& settings)
@@ -68,7 +53,10 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
       geometry_(scene),
       environment_(scene.environment,
                    EnvironmentOptions{settings.quality.sky_rgba, settings.quality.lowres_sky}),
-      lights_(scene, environment_) {}
+      lights_(scene, environment_) {
+  material_bsdf_.reserve(scene.materials.size());
+  for (const Material& m : scene.materials) material_bsdf_.push_back(untextured_bsdf(m));
+}
 
 Color PathIntegrator::environment_radiance(Vec3f dir, bool specular_chain) const {
   // Low-resolution sky after a rough bounce, which blurs it anyway; the sky the camera sees
@@ -84,27 +72,44 @@ PathState PathIntegrator::start(const Ray& camera_ray) {
   return s;
 }
 
-Color PathIntegrator::radiance(Ray ray, Sampler& sampler, PathCounters& counters,
-                               float clamp) const {
-  PathState state = start(ray);
+void PathIntegrator::radiance8(const Ray* camera_rays, Sampler* const* samplers, const float* clamp,
+                               int count, PathCounters& counters, Color* out) const {
+  PathState states[8];
+  ShadeBatch batch;
+  int lane_of[8];
+  for (int i = 0; i < count; ++i) states[i] = start(camera_rays[i]);
   const bool profile = settings_.quality.profile_phases;
-  while (state.alive) {
-    Hit hit;
-    ++counters.rays;
-    uint64_t t0 = profile ? now_ns() : 0;
-    bool found = accel_.intersect(state.ray, hit);
-    if (profile) counters.intersect_ns += now_ns() - t0;
-    ShadowRequest shadow;
-    shade(state, found, hit, sampler, shadow);
-    if (shadow.active) {
+  for (;;) {
+    batch.count = 0;
+    for (int i = 0; i < count; ++i) {
+      if (!states[i].alive) continue;
+      const int k = batch.count++;
+      lane_of[k] = i;
+      batch.state[k] = &states[i];
+      Hit& hit = batch.hit[k];
+      hit = Hit{};
+      ++counters.rays;
+      uint64_t t0 = profile ? now_ns() : 0;
+      accel_.intersect(states[i].ray, hit);
+      if (profile) counters.intersect_ns += now_ns() - t0;
+      if (needs_samples(states[i], hit.valid())) {
+        batch.u[k].light = samplers[i]->next4();
+        batch.u[k].bsdf = samplers[i]->next4();
+      }
+    }
+    if (batch.count == 0) break;
+    shade8(batch);
+    for (int k = 0; k < batch.count; ++k) {
+      const ShadowRequest& shadow = batch.shadow[k];
+      if (!shadow.active) continue;
       ++counters.shadow_rays;
-      t0 = profile ? now_ns() : 0;
+      uint64_t t0 = profile ? now_ns() : 0;
       bool blocked = accel_.occluded(shadow.ray);
       if (profile) counters.shadow_ns += now_ns() - t0;
-      if (!blocked) state.L += shadow.contribution;
+      if (!blocked) states[lane_of[k]].L += shadow.contribution;
     }
   }
-  return finish(state, counters, clamp);
+  for (int i = 0; i < count; ++i) out[i] = finish(states[i], counters, clamp[i]);
 }
 
 Color PathIntegrator::finish(const PathState& state, PathCounters& counters, float clamp) const {
@@ -121,102 +126,33 @@ Color PathIntegrator::finish(const PathState& state, PathCounters& counters, flo
   return state.L_camera + indirect;
 }
 
-void PathIntegrator::shade(PathState& st, bool found, const Hit& hit, Sampler& sampler,
-                           ShadowRequest& shadow) const {
-  shadow.active = false;
-  const bool use_nee = settings_.strategy != LightStrategy::kBsdfOnly;
-  const Ray& ray = st.ray;
-  if (!found) {
-    if (environment_.active()) {
-      Color le = environment_radiance(ray.dir, st.specular_chain);
-      float w = 1.0f;
-      if (!st.previous_was_delta) {
-        if (settings_.strategy == LightStrategy::kLightOnly)
-          w = 0.0f;
-        else if (settings_.strategy == LightStrategy::kMis)
-          w = power_heuristic(st.previous_pdf, lights_.pdf_environment(ray.dir));
-      }
-      (st.specular_chain ? st.L_camera : st.L) += st.beta * le * w;
-    }
-    st.alive = false;
-    return;
-  }
-
-  SurfaceInteraction si = geometry_.interaction(hit);
-  Vec3f wo_world = -ray.dir;
-  if (si.material->is_emissive()) {
-    Color le = lights_.emitted(si.prim, si.geometric_normal, wo_world);
+void PathIntegrator::shade_miss(PathState& st) const {
+  if (environment_.active()) {
+    Color le = environment_radiance(st.ray.dir, st.specular_chain);
     float w = 1.0f;
     if (!st.previous_was_delta) {
       if (settings_.strategy == LightStrategy::kLightOnly)
         w = 0.0f;
       else if (settings_.strategy == LightStrategy::kMis)
-        w = power_heuristic(
-            st.previous_pdf,
-            lights_.pdf_triangle(si.prim, st.previous_position, si.position, si.geometric_normal));
+        w = power_heuristic(st.previous_pdf, lights_.pdf_environment(st.ray.dir));
     }
     (st.specular_chain ? st.L_camera : st.L) += st.beta * le * w;
   }
-  if (st.depth >= settings_.max_bounces) {
-    st.alive = false;
-    return;
-  }
-
-  BsdfParams bsdf = resolve_bsdf(scene_, si);
-  if (settings_.quality.regularize) regularize(bsdf, st.max_roughness);
-  const bool opaque = bsdf.type != MaterialType::kDielectric;
-  Vec3f ng;
-  Frame frame = facing_frame(si, wo_world, opaque, &ng);
-  Vec3f wo = frame.to_local(wo_world);
-
-  std::array<float, 4> u_light = sampler.next4();
-  std::array<float, 4> u_bsdf = sampler.next4();
-
-  if (use_nee && bsdf_has_smooth_lobe(bsdf) && !lights_.empty()) {
-    LightSample ls = lights_.sample(si.position, u_light[0], {u_light[1], u_light[2]});
-    if (settings_.quality.lowres_sky && ls.distance >= kInf && ls.pdf > 0)
-      ls.radiance = environment_.eval_lowres(ls.wi);
-    if (ls.pdf > 0 && max_component(ls.radiance) > 0 && (!opaque || dot(ls.wi, ng) > 0)) {
-      Vec3f wi = frame.to_local(ls.wi);
-      BsdfEval e = settings_.quality.branchless_materials ? bsdf_evaluate(bsdf, wo, wi)
-                                                          : bsdf_evaluate_by_type(bsdf, wo, wi);
-      const Color& f = e.f;
-      if (max_component(f) > 0) {
-        shadow.ray = Ray{};
-        shadow.ray.org = offset_ray_origin(si.position, ng, ls.wi);
-        shadow.ray.dir = ls.wi;
-        shadow.ray.tfar = ls.distance < kInf ? ls.distance * (1.0f - 1e-4f) : kInf;
-        float w = 1.0f;
-        if (!ls.is_delta && settings_.strategy == LightStrategy::kMis)
-          w = power_heuristic(ls.pdf, e.pdf);
-        shadow.contribution = st.beta * f * ls.radiance * (std::abs(wi.z) * w / ls.pdf);
-        shadow.active = true;
-      }
-    }
-  }
-
   st.alive = false;
-  BsdfSample bs;
-  if (!bsdf_sample(bsdf, wo, u_light[3], {u_bsdf[0], u_bsdf[1]}, bs)) return;
-  Vec3f wi_world = frame.to_world(bs.wi);
-  if (opaque && dot(wi_world, ng) <= 0) return;  // shading normal sent it into the surface
-  st.beta *= bs.weight;
-  if (!(max_component(st.beta) > 0)) return;
-  st.previous_was_delta = bs.is_delta;
-  st.specular_chain = st.specular_chain && bs.is_delta;
-  st.previous_pdf = bs.pdf;
-  st.previous_position = si.position;
+}
 
-  if (st.depth + 1 >= settings_.russian_roulette_depth) {
-    float survive = std::min(0.95f, max_component(st.beta));
-    if (u_bsdf[2] >= survive) return;
-    st.beta *= 1.0f / survive;
+void PathIntegrator::add_emission(PathState& st, const Hit& hit) const {
+  const SurfaceInteraction si = geometry_.interaction(hit);
+  Color le = lights_.emitted(si.prim, si.geometric_normal, -st.ray.dir);
+  float w = 1.0f;
+  if (!st.previous_was_delta) {
+    if (settings_.strategy == LightStrategy::kLightOnly)
+      w = 0.0f;
+    else if (settings_.strategy == LightStrategy::kMis)
+      w = power_heuristic(st.previous_pdf, lights_.pdf_triangle(si.prim, st.previous_position,
+                                                                si.position, si.geometric_normal));
   }
-  st.ray = Ray{};
-  st.ray.org = offset_ray_origin(si.position, ng, wi_world);
-  st.ray.dir = wi_world;
-  ++st.depth;
-  st.alive = true;
+  (st.specular_chain ? st.L_camera : st.L) += st.beta * le * w;
 }
 
 }  // namespace tuneray

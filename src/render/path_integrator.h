@@ -6,7 +6,9 @@
 // Accel interface.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "accel/accel.h"
 #include "render/environment_light.h"
@@ -46,6 +48,14 @@ struct PathState {
   bool alive = true;
 };
 
+// The random numbers one shade() step consumes: a light sample and a BSDF sample. A scheduler
+// draws them (only for a path that needs_samples) and hands them over, so that a batch scheduler
+// can draw a whole wave's numbers at once.
+struct ShadeSamples {
+  std::array<float, 4> light, bsdf;
+};
+static_assert(sizeof(ShadeSamples) == 8 * sizeof(float));
+
 // A next-event-estimation ray; `contribution` is added to L when it is not occluded.
 struct ShadowRequest {
   Ray ray;
@@ -53,25 +63,45 @@ struct ShadowRequest {
   bool active = false;
 };
 
+// Up to eight paths shaded together by PathIntegrator::shade8: lane i is path *state[i], which
+// traced state[i]->ray to `hit[i]` (invalid: a miss), with the numbers u[i] (read only when
+// needs_samples); shade8 fills shadow[i].
+struct ShadeBatch {
+  int count = 0;
+  PathState* state[8];
+  Hit hit[8];
+  ShadeSamples u[8];
+  ShadowRequest shadow[8];
+};
+
 class PathIntegrator {
  public:
   PathIntegrator(const Scene& scene, const Accel& accel, const RenderSettings& settings);
 
-  // Radiance arriving along `ray` (a camera ray): the steps below run back to back. `clamp` is
-  // the firefly clamp m for this sample (0 = off); the scheduler resolves it per pass
-  // (TileRenderer::clamp_for), since a relative clamp depends on the image so far.
-  Color radiance(Ray ray, Sampler& sampler, PathCounters& counters, float clamp) const;
+  // Radiance arriving along up to eight camera rays, traced one ray at a time through the
+  // accelerator's single-ray calls (the tile scheduler); each path's steps run back to back with
+  // the other lanes', out[i] its sample value. `samplers[i]` must be positioned at the lane's
+  // pixel sample (after the camera's four numbers). `clamp[i]` is the firefly clamp m of lane i
+  // (0 = off); the scheduler resolves it per pass (TileRenderer::clamp_for), since a relative
+  // clamp depends on the image so far.
+  void radiance8(const Ray* camera_rays, Sampler* const* samplers, const float* clamp, int count,
+                 PathCounters& counters, Color* out) const;
 
-  // The steps. start() makes the state of a camera path. shade() consumes the result of
-  // tracing state.ray (found/hit), adds emission, samples a light and the next direction:
-  // afterwards state.ray is the next ray or state.alive is false, and `shadow` says whether a
-  // shadow ray must be traced. finish() is the sample's value: NaN/inf dropped; with a firefly
-  // clamp m > 0, everything but what the camera sees directly is clamped to length m.
+  // The steps. start() makes the state of a camera path. shade8() consumes the result of
+  // tracing each lane's ray (a hit or a miss), adds emission, samples a light and the next
+  // direction: afterwards state.ray is the next ray or state.alive is false, and the lane's
+  // ShadowRequest says whether a shadow ray must be traced. finish() is the sample's value:
+  // NaN/inf dropped; with a firefly clamp m > 0, everything but what the camera sees directly is
+  // clamped to length m.
   static PathState start(const Ray& camera_ray);
-  void shade(PathState& state, bool found, const Hit& hit, Sampler& sampler,
-             ShadowRequest& shadow) const;
+  // Whether shade8() will use a lane's ShadeSamples: a path that hit something and may still
+  // scatter. A path that does not ends in this step, so it would never draw those numbers.
+  bool needs_samples(const PathState& state, bool found) const {
+    return found && state.depth < settings_.max_bounces;
+  }
+  void shade8(ShadeBatch& batch) const;
   Color finish(const PathState& state, PathCounters& counters, float clamp) const;
-  // Prefetches, in two steps, what shade() will read about a hit (surface.h); a batch scheduler
+  // Prefetches, in two steps, what shade8() will read about a hit (surface.h); a batch scheduler
   // calls step 0 far ahead and step 1 nearer.
   void prefetch_hit(const Hit& hit, int step) const {
     if (!hit.valid()) return;
@@ -88,6 +118,12 @@ class PathIntegrator {
 
  private:
   Color environment_radiance(Vec3f dir, bool specular_chain) const;
+  // The per-lane parts of shade8: a path whose ray left the scene (it ends), and the emission of
+  // an emitter the ray hit, weighted against light sampling.
+  void shade_miss(PathState& state) const;
+  void add_emission(PathState& state, const Hit& hit) const;
+  // Path-space regularization (quality.regularize).
+  static void regularize(BsdfParams& bsdf, float& max_roughness);
 
   const Scene& scene_;
   const Accel& accel_;
@@ -95,6 +131,7 @@ class PathIntegrator {
   ShadingGeometry geometry_;
   EnvironmentLight environment_;
   LightSampler lights_;
+  std::vector<BsdfParams> material_bsdf_;  // untextured_bsdf of each scene material
 };
 
 }  // namespace tuneray

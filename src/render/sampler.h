@@ -5,11 +5,15 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "math/rng.h"
 #include "math/vec.h"
 
 namespace tuneray {
+
+class SamplerBank;
 
 class Sampler {
  public:
@@ -27,6 +31,56 @@ class Sampler {
     return r;
   }
   virtual std::unique_ptr<Sampler> clone() const = 0;
+  // A bank of copies of this sampler, one per path slot of a batch scheduler.
+  virtual std::unique_ptr<SamplerBank> make_bank() const = 0;
+};
+
+// Which pixel sample a path slot draws: sample `index` of pixel (x, y).
+struct PixelSampleId {
+  uint32_t x = 0, y = 0, index = 0;
+};
+
+// One sampler per path slot for a wavefront scheduler, asked for whole waves of numbers at once:
+// one virtual call per wave instead of one per quadruple, and the samplers lie side by side
+// instead of behind a pointer each. Slot k gives exactly the numbers a lone sampler started at
+// the same pixel sample would give.
+class SamplerBank {
+ public:
+  virtual ~SamplerBank() = default;
+  // Starts slots [first, first + ids.size()) at their pixel samples and writes each one's first
+  // four numbers to first4[4 * i .. 4 * i + 3] (the camera sample).
+  virtual void start(size_t first, std::span<const PixelSampleId> ids, float* first4) = 0;
+  // For each listed slot, its next `quads` quadruples: out[4 * quads * i ...].
+  virtual void next4(std::span<const uint32_t> slots, int quads, float* out) = 0;
+};
+
+// The bank of a concrete (final) sampler type: its calls are direct and inline.
+template <class S>
+class SamplerBankOf final : public SamplerBank {
+ public:
+  explicit SamplerBankOf(const S& prototype) : prototype_(prototype) {}
+  void start(size_t first, std::span<const PixelSampleId> ids, float* first4) override {
+    if (samplers_.size() < first + ids.size()) samplers_.resize(first + ids.size(), prototype_);
+    for (size_t i = 0; i < ids.size(); ++i) {
+      S& s = samplers_[first + i];
+      s.start_pixel_sample(ids[i].x, ids[i].y, ids[i].index);
+      const std::array<float, 4> u = s.S::next4();
+      for (int j = 0; j < 4; ++j) first4[4 * i + j] = u[j];
+    }
+  }
+  void next4(std::span<const uint32_t> slots, int quads, float* out) override {
+    for (uint32_t slot : slots) {
+      S& s = samplers_[slot];
+      for (int q = 0; q < quads; ++q, out += 4) {
+        const std::array<float, 4> u = s.S::next4();
+        for (int j = 0; j < 4; ++j) out[j] = u[j];
+      }
+    }
+  }
+
+ private:
+  S prototype_;
+  std::vector<S> samplers_;
 };
 
 // Independent uniform samples from PCG32, seeded from (seed, pixel, sample index) so that any
@@ -46,6 +100,9 @@ class PcgSampler final : public Sampler {
     return r;
   }
   std::unique_ptr<Sampler> clone() const override { return std::make_unique<PcgSampler>(*this); }
+  std::unique_ptr<SamplerBank> make_bank() const override {
+    return std::make_unique<SamplerBankOf<PcgSampler>>(*this);
+  }
 
  private:
   uint64_t seed_;

@@ -60,12 +60,16 @@ class Distribution1D {
   // and its probability in *pmf; *u_remapped (optional) is u rescaled to [0,1) inside the bin.
   size_t sample_discrete(float u, float* pmf, float* u_remapped = nullptr) const;
   float pmf(size_t i) const { return total_ > 0 ? weights_[i] / total_ : 0.0f; }
+  // Where bin i starts on [0, 1] (i = size(): 1): sample_discrete picks the last bin whose
+  // start is <= u.
+  float cdf(size_t i) const { return cdf_[i]; }
+  // Up to this many bins sample_discrete counts the starts at or below u instead of searching.
+  static constexpr size_t kLinearSearchBins = 16;
   // Continuous: x in [0,1) with density pdf(x) = n * weights[bin] / total.
   float sample_continuous(float u, float* pdf, size_t* bin = nullptr) const;
   float pdf_continuous(float x) const;
 
  private:
-  static constexpr size_t kLinearSearchBins = 16;
   std::vector<float> weights_;
   std::vector<float> cdf_;  // size n + 1, cdf_[0] = 0, cdf_[n] = 1
   float total_ = 0;

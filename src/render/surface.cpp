@@ -32,18 +32,26 @@ SurfaceInteraction make_interaction(const Scene& scene, const Hit& hit) {
   return si;
 }
 
-BsdfParams resolve_bsdf(const Scene& scene, const SurfaceInteraction& si) {
-  const Material& m = *si.material;
+BsdfParams untextured_bsdf(const Material& m) {
   BsdfParams p;
   p.type = m.type;
   p.base_color = m.base_color;
-  if (m.base_texture != kNoTexture)
-    p.base_color *= sample_bilinear_wrap(scene.textures[m.base_texture].image, si.uv);
   p.specular_color = m.specular_color;
   p.transmittance = m.transmittance;
   p.alpha_x = m.roughness_u;
   p.alpha_y = m.roughness_v;
   p.ior = m.ior;
+  return p;
+}
+
+Color texture_factor(const Scene& scene, const Material& m, Vec2f uv) {
+  return sample_bilinear_wrap(scene.textures[m.base_texture].image, uv);
+}
+
+BsdfParams resolve_bsdf(const Scene& scene, const SurfaceInteraction& si) {
+  const Material& m = *si.material;
+  BsdfParams p = untextured_bsdf(m);
+  if (m.base_texture != kNoTexture) p.base_color *= texture_factor(scene, m, si.uv);
   return p;
 }
 

@@ -44,6 +44,10 @@ inline void prefetch_hit_vertices(const Scene& scene, uint32_t prim) {
 
 // Resolves textures: the BSDF parameters at this point.
 BsdfParams resolve_bsdf(const Scene& scene, const SurfaceInteraction& si);
+// Its two parts: the material's parameters without its texture (the same at every point), and
+// the factor its base texture (m.base_texture != kNoTexture) puts on base_color at `uv`.
+BsdfParams untextured_bsdf(const Material& m);
+Color texture_factor(const Scene& scene, const Material& m, Vec2f uv);
 
 // Origin for a ray leaving `p` towards side `dir` of the surface with geometric normal n:
 // offset along n by an amount that scales with the coordinates' magnitude (float precision).

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <memory>
 
 namespace tuneray {
@@ -38,11 +39,18 @@ PassStats combine(tbb::combinable<PathCounters>& counters, double render_ms, uin
   return stats;
 }
 
-// What a wavefront worker keeps between chunks: one sampler per path slot and the queues.
-struct WaveBuffers {
-  std::vector<std::unique_ptr<Sampler>> samplers;
+}  // namespace
+
+// What a wavefront worker keeps between chunks and passes: its path slots' samplers, states and
+// queues. Kept by the renderer, so a pass (a frame, when the tuner measures) allocates and
+// page-faults nothing once the buffers have grown to a wave.
+struct TileRenderer::WaveBuffers {
+  std::unique_ptr<SamplerBank> samplers;
+  std::vector<PixelSampleId> ids;
+  std::vector<float> camera_u;  // 4 per path
   std::vector<PathState> states;
-  std::vector<uint32_t> queue, next_queue;
+  std::vector<uint32_t> queue, next_queue, sampled;
+  std::vector<float> shade_u;  // a ShadeSamples per entry of `sampled`
   std::vector<Ray> rays, shadow_rays;
   std::vector<Hit> hits;
   std::vector<uint32_t> shadow_owner;
@@ -50,7 +58,9 @@ struct WaveBuffers {
   std::vector<uint8_t> occluded;
 };
 
-}  // namespace
+struct TileRenderer::WavePool {
+  tbb::enumerable_thread_specific<WaveBuffers> buffers;
+};
 
 void PassStats::accumulate(const PassStats& o) {
   render_ms += o.render_ms;
@@ -69,7 +79,10 @@ TileRenderer::TileRenderer(const Scene& scene, const Accel& accel, const CameraD
       settings_(settings),
       camera_(camera, settings.width, settings.height),
       integrator_(scene, accel, settings),
-      prototype_(prototype) {}
+      prototype_(prototype),
+      wave_pool_(std::make_unique<WavePool>()) {}
+
+TileRenderer::~TileRenderer() = default;
 
 int TileRenderer::tile_count() const {
   int ts = std::max(1, settings_.tile_size);
@@ -124,29 +137,64 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
 
   tbb::parallel_for(
       tbb::blocked_range<int>(0, tile_count(), 1), [&](const tbb::blocked_range<int>& r) {
-        std::unique_ptr<Sampler> sampler = prototype_.clone();
+        // Eight pixel samples at a time, in the tile's pixel and sample order: their paths run
+        // side by side through the integrator's eight lanes, one ray at a time.
+        std::unique_ptr<Sampler> samplers[8];
+        for (auto& sampler : samplers) sampler = prototype_.clone();
+        Sampler* lanes[8];
+        for (int i = 0; i < 8; ++i) lanes[i] = samplers[i].get();
         PathCounters& local = counters.local();
         uint64_t& local_samples = samples.local();
         for (int tile = r.begin(); tile != r.end(); ++tile) {
           uint64_t t0 = profile ? now_ns() : 0;
           int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
           int x1 = std::min(x0 + ts, settings_.width), y1 = std::min(y0 + ts, settings_.height);
+          struct LaneSample {
+            int x, y;
+            uint32_t index;
+          };
+          LaneSample group[8];
+          Ray rays[8];
+          float clamps[8];
+          Color values[8];
+          int filled = 0;
+          PixelSamples pixel;
+          int pixel_x = -1, pixel_y = -1;
+          auto flush_pixel = [&] {
+            if (pixel.count > 0) film.add(pixel_x, pixel_y, pixel);
+            pixel = PixelSamples{};
+          };
+          // Traces the group and adds its values to their pixels, in order.
+          auto run_group = [&] {
+            integrator_.radiance8(rays, lanes, clamps, filled, local, values);
+            for (int i = 0; i < filled; ++i) {
+              if (group[i].x != pixel_x || group[i].y != pixel_y) {
+                flush_pixel();
+                pixel_x = group[i].x;
+                pixel_y = group[i].y;
+              }
+              pixel.add(values[i], group[i].index);
+            }
+            local_samples += static_cast<uint64_t>(filled);
+            filled = 0;
+          };
           for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
-              size_t pixel = static_cast<size_t>(y) * settings_.width + x;
-              uint32_t first = work.first(pixel), n = work.count(pixel);
-              if (n == 0) continue;
-              PixelSamples samples;
+              size_t pixel_index = static_cast<size_t>(y) * settings_.width + x;
+              uint32_t first = work.first(pixel_index), n = work.count(pixel_index);
               for (uint32_t s = 0; s < n; ++s) {
-                sampler->start_pixel_sample(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
-                                            first + s);
-                std::array<float, 4> u = sampler->next4();
-                Ray ray = camera_.generate_ray({x + u[0], y + u[1]}, {u[2], u[3]});
-                samples.add(integrator_.radiance(ray, *sampler, local, clamp.at(pixel)), first + s);
+                Sampler& sampler = *lanes[filled];
+                sampler.start_pixel_sample(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
+                                           first + s);
+                std::array<float, 4> u = sampler.next4();
+                rays[filled] = camera_.generate_ray({x + u[0], y + u[1]}, {u[2], u[3]});
+                clamps[filled] = clamp.at(pixel_index);
+                group[filled] = {x, y, first + s};
+                if (++filled == 8) run_group();
               }
-              local_samples += n;
-              film.add(x, y, samples);
             }
+          if (filled > 0) run_group();
+          flush_pixel();
           if (profile) local.total_ns += now_ns() - t0;
           if (on_tile_done) on_tile_done();
         }
@@ -183,35 +231,35 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
   chunk_begin.push_back(pixel_count);
 
   tbb::combinable<PathCounters> counters;
-  tbb::enumerable_thread_specific<WaveBuffers> buffers;
   auto start = std::chrono::steady_clock::now();
 
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, chunk_begin.size() - 1, 1),
       [&](const tbb::blocked_range<size_t>& r) {
         PathCounters& local = counters.local();
-        WaveBuffers& b = buffers.local();
+        WaveBuffers& b = wave_pool_->buffers.local();
+        if (!b.samplers) b.samplers = prototype_.make_bank();
         for (size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
           uint64_t t_chunk = profile ? now_ns() : 0;
           size_t p0 = chunk_begin[chunk], p1 = chunk_begin[chunk + 1];
-          size_t paths = 0;
-          for (size_t p = p0; p < p1; ++p) paths += count[p];
-          while (b.samplers.size() < paths) b.samplers.push_back(prototype_.clone());
-          b.states.resize(paths);
-          b.queue.clear();
 
           // Generate.
-          size_t k = 0;
+          b.ids.clear();
           for (size_t p = p0; p < p1; ++p) {
             uint32_t x = static_cast<uint32_t>(p % width), y = static_cast<uint32_t>(p / width);
-            for (uint32_t s = 0; s < count[p]; ++s, ++k) {
-              Sampler& sampler = *b.samplers[k];
-              sampler.start_pixel_sample(x, y, first[p] + s);
-              std::array<float, 4> u = sampler.next4();
-              b.states[k] = PathIntegrator::start(camera_.generate_ray(
-                  {static_cast<float>(x) + u[0], static_cast<float>(y) + u[1]}, {u[2], u[3]}));
-              b.queue.push_back(static_cast<uint32_t>(k));
-            }
+            for (uint32_t s = 0; s < count[p]; ++s) b.ids.push_back({x, y, first[p] + s});
+          }
+          const size_t paths = b.ids.size();
+          b.camera_u.resize(4 * paths);
+          b.samplers->start(0, b.ids, b.camera_u.data());
+          b.states.resize(paths);
+          b.queue.resize(paths);
+          for (size_t k = 0; k < paths; ++k) {
+            const float* u = &b.camera_u[4 * k];
+            b.states[k] = PathIntegrator::start(camera_.generate_ray(
+                {static_cast<float>(b.ids[k].x) + u[0], static_cast<float>(b.ids[k].y) + u[1]},
+                {u[2], u[3]}));
+            b.queue[k] = static_cast<uint32_t>(k);
           }
 
           // The first wave is the camera rays in pixel order; after a bounce they scatter.
@@ -228,6 +276,15 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
             if (profile) local.intersect_ns += now_ns() - t0;
             local.rays += n;
 
+            // The wave's random numbers, drawn together for the paths that will use them.
+            b.sampled.clear();
+            for (size_t i = 0; i < n; ++i)
+              if (integrator_.needs_samples(b.states[b.queue[i]], b.hits[i].valid()))
+                b.sampled.push_back(b.queue[i]);
+            constexpr size_t kPerPath = sizeof(ShadeSamples) / sizeof(float);
+            b.shade_u.resize(kPerPath * b.sampled.size());
+            b.samplers->next4(b.sampled, kPerPath / 4, b.shade_u.data());
+
             // Shade: emission, light sample, next direction; shadow rays are collected.
             b.shadow_rays.clear();
             b.shadow_owner.clear();
@@ -238,18 +295,30 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
             constexpr size_t kFar = 16, kNear = 8;
             for (size_t i = 0; i < std::min(n, kFar); ++i) integrator_.prefetch_hit(b.hits[i], 0);
             for (size_t i = 0; i < std::min(n, kNear); ++i) integrator_.prefetch_hit(b.hits[i], 1);
-            for (size_t i = 0; i < n; ++i) {
-              if (i + kFar < n) integrator_.prefetch_hit(b.hits[i + kFar], 0);
-              if (i + kNear < n) integrator_.prefetch_hit(b.hits[i + kNear], 1);
-              uint32_t q = b.queue[i];
-              ShadowRequest shadow;
-              integrator_.shade(b.states[q], b.hits[i].valid(), b.hits[i], *b.samplers[q], shadow);
-              if (shadow.active) {
-                b.shadow_rays.push_back(shadow.ray);
-                b.shadow_owner.push_back(q);
-                b.shadow_contribution.push_back(shadow.contribution);
+            ShadeBatch batch;
+            for (size_t i0 = 0, next_u = 0; i0 < n; i0 += 8) {
+              batch.count = static_cast<int>(std::min<size_t>(8, n - i0));
+              for (int k = 0; k < batch.count; ++k) {
+                const size_t i = i0 + k;
+                if (i + kFar < n) integrator_.prefetch_hit(b.hits[i + kFar], 0);
+                if (i + kNear < n) integrator_.prefetch_hit(b.hits[i + kNear], 1);
+                PathState& st = b.states[b.queue[i]];
+                batch.state[k] = &st;
+                batch.hit[k] = b.hits[i];
+                if (integrator_.needs_samples(st, b.hits[i].valid()))
+                  std::memcpy(&batch.u[k], &b.shade_u[kPerPath * next_u++], sizeof batch.u[k]);
               }
-              if (b.states[q].alive) b.next_queue.push_back(q);  // compaction
+              integrator_.shade8(batch);
+              for (int k = 0; k < batch.count; ++k) {
+                const uint32_t q = b.queue[i0 + k];
+                const ShadowRequest& shadow = batch.shadow[k];
+                if (shadow.active) {
+                  b.shadow_rays.push_back(shadow.ray);
+                  b.shadow_owner.push_back(q);
+                  b.shadow_contribution.push_back(shadow.contribution);
+                }
+                if (b.states[q].alive) b.next_queue.push_back(q);  // compaction
+              }
             }
 
             // Connect: shadow rays as one batch.
@@ -266,7 +335,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
           }
 
           // Accumulate each pixel's samples in index order, as the tile scheduler does.
-          k = 0;
+          size_t k = 0;
           for (size_t p = p0; p < p1; ++p) {
             if (count[p] == 0) continue;
             PixelSamples samples;

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "accel/accel.h"
@@ -40,6 +41,7 @@ class TileRenderer {
  public:
   TileRenderer(const Scene& scene, const Accel& accel, const CameraDesc& camera,
                const RenderSettings& settings, const Sampler& prototype);
+  ~TileRenderer();
 
   // Adds `spp` samples per pixel, sample indices [first_sample, first_sample + spp). The
   // result depends only on the seed and the sample indices, not on the thread count.
@@ -89,6 +91,9 @@ class TileRenderer {
   Camera camera_;
   PathIntegrator integrator_;
   const Sampler& prototype_;
+  struct WaveBuffers;
+  struct WavePool;
+  std::unique_ptr<WavePool> wave_pool_;  // per-thread wavefront buffers, kept between passes
 };
 
 }  // namespace tuneray
