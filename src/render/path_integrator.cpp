@@ -2,48 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 
 #include "render/surface.h"
 
 namespace tuneray {
-
-namespace {
-uint64_t now_ns() {
-  return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                   std::chrono::steady_clock::now().time_since_epoch())
-                                   .count());
-}
-}  // namespace
-
-// A lobe may not be sharper than the roughest vertex before it, so paths such as diffuse ->
-// mirror -> light become sampleable by light sampling. Lambert counts as roughness 1; a mirror
-// behind a rough vertex turns into a GGX conductor of that roughness.
-void PathIntegrator::regularize(BsdfParams& bsdf, float& max_roughness) {
-  float own = 0;
-  switch (bsdf.type) {
-    case MaterialType::kLambert:
-      own = 1.0f;
-      break;
-    case MaterialType::kGlossy:
-    case MaterialType::kPrincipled:
-      bsdf.alpha_x = std::max(bsdf.alpha_x, max_roughness);
-      bsdf.alpha_y = std::max(bsdf.alpha_y, max_roughness);
-      own = std::max(bsdf.alpha_x, bsdf.alpha_y);
-      break;
-    case MaterialType::kMirror:
-      if (max_roughness > 0) {
-        bsdf.type = MaterialType::kGlossy;
-        bsdf.alpha_x = bsdf.alpha_y = max_roughness;
-        own = max_roughness;
-      }
-      break;
-    case MaterialType::kDielectric:
-      break;  // no rough dielectric lobe to widen into
-  }
-  max_roughness = std::max(max_roughness, own);
-}
 
 PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
                                const RenderSettings& settings)
@@ -56,6 +19,22 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
       lights_(scene, environment_) {
   material_bsdf_.reserve(scene.materials.size());
   for (const Material& m : scene.materials) material_bsdf_.push_back(untextured_bsdf(m));
+  MaterialPlanes& mp = material_planes_;
+  for (const BsdfParams& p : material_bsdf_) {
+    mp.type.push_back(static_cast<int32_t>(p.type));
+    mp.base_r.push_back(p.base_color.x);
+    mp.base_g.push_back(p.base_color.y);
+    mp.base_b.push_back(p.base_color.z);
+    mp.specular_r.push_back(p.specular_color.x);
+    mp.specular_g.push_back(p.specular_color.y);
+    mp.specular_b.push_back(p.specular_color.z);
+    mp.alpha_x.push_back(p.alpha_x);
+    mp.alpha_y.push_back(p.alpha_y);
+  }
+  for (const Material& m : scene.materials) {
+    mp.emissive.push_back(m.is_emissive() ? 1 : 0);
+    mp.textured.push_back(m.base_texture != kNoTexture ? 1 : 0);
+  }
 }
 
 Color PathIntegrator::environment_radiance(Vec3f dir, bool specular_chain) const {
@@ -65,56 +44,11 @@ Color PathIntegrator::environment_radiance(Vec3f dir, bool specular_chain) const
                                                          : environment_.eval(dir);
 }
 
-PathState PathIntegrator::start(const Ray& camera_ray) {
-  PathState s;
-  s.ray = camera_ray;
-  s.previous_position = camera_ray.org;
-  return s;
-}
-
-void PathIntegrator::radiance8(const Ray* camera_rays, Sampler* const* samplers, const float* clamp,
-                               int count, PathCounters& counters, Color* out) const {
-  PathState states[8];
-  ShadeBatch batch;
-  int lane_of[8];
-  for (int i = 0; i < count; ++i) states[i] = start(camera_rays[i]);
-  const bool profile = settings_.quality.profile_phases;
-  for (;;) {
-    batch.count = 0;
-    for (int i = 0; i < count; ++i) {
-      if (!states[i].alive) continue;
-      const int k = batch.count++;
-      lane_of[k] = i;
-      batch.state[k] = &states[i];
-      Hit& hit = batch.hit[k];
-      hit = Hit{};
-      ++counters.rays;
-      uint64_t t0 = profile ? now_ns() : 0;
-      accel_.intersect(states[i].ray, hit);
-      if (profile) counters.intersect_ns += now_ns() - t0;
-      if (needs_samples(states[i], hit.valid())) {
-        batch.u[k].light = samplers[i]->next4();
-        batch.u[k].bsdf = samplers[i]->next4();
-      }
-    }
-    if (batch.count == 0) break;
-    shade8(batch);
-    for (int k = 0; k < batch.count; ++k) {
-      const ShadowRequest& shadow = batch.shadow[k];
-      if (!shadow.active) continue;
-      ++counters.shadow_rays;
-      uint64_t t0 = profile ? now_ns() : 0;
-      bool blocked = accel_.occluded(shadow.ray);
-      if (profile) counters.shadow_ns += now_ns() - t0;
-      if (!blocked) states[lane_of[k]].L += shadow.contribution;
-    }
-  }
-  for (int i = 0; i < count; ++i) out[i] = finish(states[i], counters, clamp[i]);
-}
-
-Color PathIntegrator::finish(const PathState& state, PathCounters& counters, float clamp) const {
-  Color indirect = state.L;
-  if (!is_finite(indirect) || !is_finite(state.L_camera)) {
+Color PathIntegrator::finish(const PathWave& wave, size_t i, PathCounters& counters,
+                             float clamp) const {
+  Color indirect = wave.radiance(i);
+  const Color camera = wave.camera_radiance(i);
+  if (!is_finite(indirect) || !is_finite(camera)) {
     ++counters.invalid_samples;
     return Color(0.0f);
   }
@@ -123,36 +57,54 @@ Color PathIntegrator::finish(const PathState& state, PathCounters& counters, flo
     float len = length(indirect);
     if (len > clamp) indirect *= clamp / len;
   }
-  return state.L_camera + indirect;
+  return camera + indirect;
 }
 
-void PathIntegrator::shade_miss(PathState& st) const {
-  if (environment_.active()) {
-    Color le = environment_radiance(st.ray.dir, st.specular_chain);
-    float w = 1.0f;
-    if (!st.previous_was_delta) {
-      if (settings_.strategy == LightStrategy::kLightOnly)
-        w = 0.0f;
-      else if (settings_.strategy == LightStrategy::kMis)
-        w = power_heuristic(st.previous_pdf, lights_.pdf_environment(st.ray.dir));
-    }
-    (st.specular_chain ? st.L_camera : st.L) += st.beta * le * w;
-  }
-  st.alive = false;
+namespace {
+// Where a path adds what it sees: to the camera part while every vertex was specular.
+void add_seen(PathWave& wave, size_t i, Color c) {
+  const int base = wave.flags[i] & PathWave::kSpecularChain ? PathWave::kCameraX : PathWave::kLX;
+  wave.plane(base)[i] += c.x;
+  wave.plane(base + 1)[i] += c.y;
+  wave.plane(base + 2)[i] += c.z;
 }
+Color beta_of(const PathWave& wave, size_t i) {
+  return {wave.plane(PathWave::kBetaX)[i], wave.plane(PathWave::kBetaY)[i],
+          wave.plane(PathWave::kBetaZ)[i]};
+}
+}  // namespace
 
-void PathIntegrator::add_emission(PathState& st, const Hit& hit) const {
-  const SurfaceInteraction si = geometry_.interaction(hit);
-  Color le = lights_.emitted(si.prim, si.geometric_normal, -st.ray.dir);
+void PathIntegrator::shade_miss(PathWave& wave, size_t i) const {
+  if (!environment_.active()) return;
+  const Vec3f dir = wave.ray(i).dir;
+  const bool specular_chain = wave.flags[i] & PathWave::kSpecularChain;
+  Color le = environment_radiance(dir, specular_chain);
   float w = 1.0f;
-  if (!st.previous_was_delta) {
+  if (!(wave.flags[i] & PathWave::kPreviousWasDelta)) {
     if (settings_.strategy == LightStrategy::kLightOnly)
       w = 0.0f;
     else if (settings_.strategy == LightStrategy::kMis)
-      w = power_heuristic(st.previous_pdf, lights_.pdf_triangle(si.prim, st.previous_position,
-                                                                si.position, si.geometric_normal));
+      w = power_heuristic(wave.plane(PathWave::kPrevPdf)[i], lights_.pdf_environment(dir));
   }
-  (st.specular_chain ? st.L_camera : st.L) += st.beta * le * w;
+  add_seen(wave, i, beta_of(wave, i) * le * w);
+}
+
+void PathIntegrator::add_emission(PathWave& wave, size_t i, const Hit& hit) const {
+  const SurfaceInteraction si = geometry_.interaction(hit);
+  Color le = lights_.emitted(si.prim, si.geometric_normal, -wave.ray(i).dir);
+  float w = 1.0f;
+  if (!(wave.flags[i] & PathWave::kPreviousWasDelta)) {
+    if (settings_.strategy == LightStrategy::kLightOnly) {
+      w = 0.0f;
+    } else if (settings_.strategy == LightStrategy::kMis) {
+      const Vec3f previous{wave.plane(PathWave::kPrevX)[i], wave.plane(PathWave::kPrevY)[i],
+                           wave.plane(PathWave::kPrevZ)[i]};
+      w = power_heuristic(
+          wave.plane(PathWave::kPrevPdf)[i],
+          lights_.pdf_triangle(si.prim, previous, si.position, si.geometric_normal));
+    }
+  }
+  add_seen(wave, i, beta_of(wave, i) * le * w);
 }
 
 }  // namespace tuneray

@@ -93,38 +93,43 @@ F8 power_heuristic(F8 a, F8 b) {
 
 }  // namespace
 
-void PathIntegrator::shade8(ShadeBatch& b) const {
+uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit* hits,
+                                const float* const* u, ShadowRequest* shadow) const {
   const bool use_nee = settings_.strategy != LightStrategy::kBsdfOnly;
   const bool mis = settings_.strategy == LightStrategy::kMis;
+  auto load = [&](int plane) { return F8::load(w.plane(plane) + begin); };
+  auto load3 = [&](int plane) { return V8(load(plane), load(plane + 1), load(plane + 2)); };
+  auto store = [&](int plane, F8 v) { v.store(w.plane(plane) + begin); };
+  auto store3 = [&](int plane, const V8& v) {
+    store(plane, v.x);
+    store(plane + 1, v.y);
+    store(plane + 2, v.z);
+  };
 
   // --- Per lane: misses, emission, the end of the path; gathering for the lanes that scatter.
   uint32_t scatter = 0;
-  BsdfParams params[kLanes];
   LaneVecs p0, p1, p2, n0, n1, n2, ng, flat_normal, flat_tangent;
   LaneFloats bu, bv;
-  uint32_t flat = 0;
-  for (int i = 0; i < b.count; ++i) {
-    PathState& st = *b.state[i];
-    b.shadow[i].active = false;
-    const Hit& hit = b.hit[i];
+  alignas(32) int32_t material_of[kLanes] = {};
+  uint32_t flat = 0, textured = 0;
+  for (int i = 0; i < count; ++i) {
+    const size_t k = begin + static_cast<size_t>(i);
+    shadow[i].active = false;
+    const Hit& hit = hits[i];
     if (!hit.valid()) {
-      shade_miss(st);
+      shade_miss(w, k);
       continue;
     }
     const TriangleShading& ts = geometry_.triangle(hit.prim);
-    const Material& material = scene_.materials[ts.material];
-    if (material.is_emissive()) add_emission(st, hit);
-    if (st.depth >= settings_.max_bounces) {
-      st.alive = false;
-      continue;
-    }
+    const MaterialPlanes& mp = material_planes_;
+    if (mp.emissive[ts.material]) add_emission(w, k, hit);
+    if (w.depth[k] >= settings_.max_bounces) continue;
     scatter |= 1u << i;
+    material_of[i] = static_cast<int32_t>(ts.material);
     const Triangle& tri = scene_.triangles[hit.prim];
-    const Vec3f a = scene_.positions[tri.v[0]], c = scene_.positions[tri.v[1]],
-                d = scene_.positions[tri.v[2]];
-    p0.set(i, a);
-    p1.set(i, c);
-    p2.set(i, d);
+    p0.set(i, scene_.positions[tri.v[0]]);
+    p1.set(i, scene_.positions[tri.v[1]]);
+    p2.set(i, scene_.positions[tri.v[2]]);
     bu.v[i] = hit.u;
     bv.v[i] = hit.v;
     ng.set(i, ts.geometric_normal);
@@ -137,26 +142,15 @@ void PathIntegrator::shade8(ShadeBatch& b) const {
       n1.set(i, scene_.normals[tri.v[1]]);
       n2.set(i, scene_.normals[tri.v[2]]);
     }
-    params[i] = material_bsdf_[ts.material];
-    if (material.base_texture != kNoTexture) {
-      // resolve_bsdf's lookup: at the interpolated UV, or (0, 0) on a mesh without UVs.
-      Vec2f uv;
-      if (!scene_.uvs.empty()) {
-        const float w0 = 1.0f - hit.u - hit.v;
-        uv =
-            scene_.uvs[tri.v[0]] * w0 + scene_.uvs[tri.v[1]] * hit.u + scene_.uvs[tri.v[2]] * hit.v;
-      }
-      params[i].base_color *= texture_factor(scene_, material, uv);
-    }
-    if (settings_.quality.regularize) regularize(params[i], st.max_roughness);
+    if (mp.textured[ts.material]) textured |= 1u << i;
   }
-  if (!scatter) return;
+  if (!scatter) return 0;
 
-  // --- The hit point and its frames (ShadingGeometry::interaction and facing_frame), 8 wide.
+  // --- The hit point and its frames (ShadingGeometry::interaction), 8 wide.
   const M8 lanes = M8::from_bits(scatter);
-  const F8 u = bu.get(), v = bv.get(), w0 = 1.0f - u - v;
+  const F8 u_bary = bu.get(), v_bary = bv.get(), w0 = 1.0f - u_bary - v_bary;
   const V8 a = p0.get(), c = p1.get(), d = p2.get();
-  const V8 position = a * w0 + c * u + d * v;
+  const V8 position = a * w0 + c * u_bary + d * v_bary;
   V8 normal = ng.get();
   Frame8 shading;
   const M8 is_flat = M8::from_bits(flat);
@@ -165,7 +159,7 @@ void PathIntegrator::shade8(ShadeBatch& b) const {
     shading = {ft, cross(fn, ft), fn};
   }
   if (scatter & ~flat) {
-    V8 ns = n0.get() * w0 + n1.get() * u + n2.get() * v;
+    V8 ns = n0.get() * w0 + n1.get() * u_bary + n2.get() * v_bary;
     const F8 ns_len = length(ns);
     const M8 ok = (ns_len > F8(0.0f)) & simd::is_finite(ns_len);
     ns = simd::select(ok, ns / simd::select(ok, ns_len, F8(1.0f)), normal);
@@ -175,57 +169,82 @@ void PathIntegrator::shade8(ShadeBatch& b) const {
     shading.n = simd::select(is_flat, shading.n, smooth.n);
   }
 
-  LaneVecs dir_in;
-  uint32_t opaque_bits = 0, smooth_bits = 0;
-  simd::SmoothBsdf8 bsdf;
-  LaneVecs base, specular;
-  LaneFloats ax, ay;
-  uint32_t lambert = 0, glossy = 0, principled = 0, mirror = 0;
-  for (uint32_t m = scatter; m; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    const BsdfParams& p = params[i];
-    dir_in.set(i, b.state[i]->ray.dir);
-    const uint32_t bit = 1u << i;
-    if (p.type != MaterialType::kDielectric) opaque_bits |= bit;
-    if (bsdf_has_smooth_lobe(p)) smooth_bits |= bit;
-    switch (p.type) {
-      case MaterialType::kLambert:
-        lambert |= bit;
-        break;
-      case MaterialType::kGlossy:
-        glossy |= bit;
-        break;
-      case MaterialType::kPrincipled:
-        principled |= bit;
-        break;
-      case MaterialType::kMirror:
-        mirror |= bit;
-        break;
-      case MaterialType::kDielectric:
-        break;
+  // --- The material at each hit (resolve_bsdf), regularized (regularize), 8 wide.
+  const simd::I8 material = simd::I8::load(material_of);
+  const MaterialPlanes& mp = material_planes_;
+  auto gather = [&](const std::vector<float>& plane) {
+    return F8(_mm256_i32gather_ps(plane.data(), material.v, 4));
+  };
+  const simd::I8 type(_mm256_i32gather_epi32(mp.type.data(), material.v, 4));
+  V8 base(gather(mp.base_r), gather(mp.base_g), gather(mp.base_b));
+  if (textured) {
+    // resolve_bsdf's lookup: at the interpolated UV, or (0, 0) on a mesh without UVs.
+    const LaneOut base_out(base);
+    LaneVecs textured_base;
+    for (int i = 0; i < kLanes; ++i) {
+      if (!((textured >> i) & 1)) {
+        textured_base.set(i, base_out[i]);
+        continue;
+      }
+      const Hit& hit = hits[i];
+      const Triangle& tri = scene_.triangles[hit.prim];
+      Vec2f uv;
+      if (!scene_.uvs.empty()) {
+        const float b0 = 1.0f - hit.u - hit.v;
+        uv =
+            scene_.uvs[tri.v[0]] * b0 + scene_.uvs[tri.v[1]] * hit.u + scene_.uvs[tri.v[2]] * hit.v;
+      }
+      const Material& m = scene_.materials[static_cast<size_t>(material_of[i])];
+      textured_base.set(i, base_out[i] * texture_factor(scene_, m, uv));
     }
-    base.set(i, p.base_color);
-    specular.set(i, p.specular_color);
-    // bsdf.cpp's clamp_alpha: a NaN roughness becomes the minimum too.
-    ax.v[i] = p.alpha_x > simd::kMinAlpha8 ? p.alpha_x : simd::kMinAlpha8;
-    ay.v[i] = p.alpha_y > simd::kMinAlpha8 ? p.alpha_y : simd::kMinAlpha8;
+    base = textured_base.get();
   }
-  bsdf.lambert = M8::from_bits(lambert);
-  bsdf.glossy = M8::from_bits(glossy);
-  bsdf.principled = M8::from_bits(principled);
-  bsdf.base = base.get();
-  bsdf.specular = specular.get();
-  bsdf.ax = ax.get();
-  bsdf.ay = ay.get();
+  M8 is_lambert = lanes & (type == simd::I8(static_cast<int32_t>(MaterialType::kLambert)));
+  M8 is_glossy = lanes & (type == simd::I8(static_cast<int32_t>(MaterialType::kGlossy)));
+  const M8 is_principled =
+      lanes & (type == simd::I8(static_cast<int32_t>(MaterialType::kPrincipled)));
+  M8 is_mirror = lanes & (type == simd::I8(static_cast<int32_t>(MaterialType::kMirror)));
+  const M8 is_dielectric =
+      lanes & (type == simd::I8(static_cast<int32_t>(MaterialType::kDielectric)));
+  F8 alpha_x = gather(mp.alpha_x), alpha_y = gather(mp.alpha_y);
+  if (settings_.quality.regularize) {
+    // regularize(): a lobe no sharper than the roughest vertex before it; Lambert counts as
+    // roughness 1, a mirror behind a rough vertex turns into a GGX conductor of that roughness.
+    F8 max_roughness = load(PathWave::kMaxRoughness);
+    const M8 ggx = is_glossy | is_principled;
+    const M8 widened_mirror = is_mirror & (max_roughness > F8(0.0f));
+    alpha_x = simd::select(ggx, simd::max(alpha_x, max_roughness), alpha_x);
+    alpha_y = simd::select(ggx, simd::max(alpha_y, max_roughness), alpha_y);
+    alpha_x = simd::select(widened_mirror, max_roughness, alpha_x);
+    alpha_y = simd::select(widened_mirror, max_roughness, alpha_y);
+    F8 own = simd::keep(is_lambert, F8(1.0f));
+    own = simd::select(ggx, simd::max(alpha_x, alpha_y), own);
+    own = simd::select(widened_mirror, max_roughness, own);
+    is_glossy |= widened_mirror;
+    is_mirror = is_mirror.and_not(widened_mirror);
+    store(PathWave::kMaxRoughness,
+          simd::select(lanes, simd::max(max_roughness, own), max_roughness));
+  }
+  const M8 opaque = lanes.and_not(is_dielectric);
+  const M8 smooth = is_lambert | is_glossy | is_principled;
+  simd::SmoothBsdf8 bsdf;
+  bsdf.lambert = is_lambert;
+  bsdf.glossy = is_glossy;
+  bsdf.principled = is_principled;
+  bsdf.base = base;
+  bsdf.specular = V8(gather(mp.specular_r), gather(mp.specular_g), gather(mp.specular_b));
+  // bsdf.cpp's clamp_alpha: anything not above the minimum (a NaN too) becomes the minimum.
+  const F8 min_alpha(simd::kMinAlpha8);
+  bsdf.ax = simd::select(alpha_x > min_alpha, alpha_x, min_alpha);
+  bsdf.ay = simd::select(alpha_y > min_alpha, alpha_y, min_alpha);
 
-  const M8 opaque = M8::from_bits(opaque_bits);
-  const V8 wo_world = -dir_in.get();
   // facing_frame: opaque BSDFs see the side of the surface that wo is on.
+  const V8 wo_world = -load3(PathWave::kDirX);
   const M8 flip = opaque & (dot(normal, wo_world) < F8(0.0f));
   normal = simd::select(flip, -normal, normal);
   shading.t = simd::select(flip, -shading.t, shading.t);
   shading.n = simd::select(flip, -shading.n, shading.n);
-  const M8 below = lanes & opaque & (dot(shading.n, wo_world) <= F8(1e-6f));
+  const M8 below = opaque & (dot(shading.n, wo_world) <= F8(1e-6f));
   if (below.any()) {
     const Frame8 g = frame_from_normal_tangent(normal, shading.s);
     shading.s = simd::select(below, g.s, shading.s);
@@ -233,34 +252,13 @@ void PathIntegrator::shade8(ShadeBatch& b) const {
     shading.n = simd::select(below, g.n, shading.n);
   }
   const V8 wo = shading.to_local(wo_world);
+  auto load_u = [&](int k) { return F8::load(u[k] + begin); };
 
-  LaneFloats u_light3, u_bsdf0, u_bsdf1, u_bsdf2;
-  for (uint32_t m = scatter; m; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    u_light3.v[i] = b.u[i].light[3];
-    u_bsdf0.v[i] = b.u[i].bsdf[0];
-    u_bsdf1.v[i] = b.u[i].bsdf[1];
-    u_bsdf2.v[i] = b.u[i].bsdf[2];
-  }
-
-  // --- Next-event estimation: the light sample per lane, its evaluation 8 wide.
-  LaneVecs beta_in;
-  for (uint32_t m = scatter; m; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    beta_in.set(i, b.state[i]->beta);
-  }
-  const V8 beta = beta_in.get();
-  const LaneOut position_out(position), normal_out(normal);
-  uint32_t nee = use_nee && !lights_.empty() ? smooth_bits : 0;
+  // --- Next-event estimation, 8 wide (the environment's samples lane by lane).
+  const V8 beta = load3(PathWave::kBetaX);
+  uint32_t nee = use_nee && !lights_.empty() ? (smooth & lanes).bits() : 0;
   if (nee) {
-    LaneFloats u0, u1, u2;
-    for (uint32_t m = nee; m; m &= m - 1) {
-      const int i = __builtin_ctz(m);
-      u0.v[i] = b.u[i].light[0];
-      u1.v[i] = b.u[i].light[1];
-      u2.v[i] = b.u[i].light[2];
-    }
-    LightSample8 ls = lights_.sample8(position, u0.get(), u1.get(), u2.get(), nee);
+    LightSample8 ls = lights_.sample8(position, load_u(0), load_u(1), load_u(2), nee);
     if (settings_.quality.lowres_sky) {
       const M8 sky = M8::from_bits(nee) & (ls.distance >= F8(kInf)) & (ls.pdf > F8(0.0f));
       if (sky.any()) {
@@ -276,19 +274,23 @@ void PathIntegrator::shade8(ShadeBatch& b) const {
                       (simd::max_component(ls.radiance) > F8(0.0f)) &
                       !(opaque & !(dot(ls.wi, normal) > F8(0.0f)));
     nee = usable.bits();
-    const uint32_t delta = ls.is_delta.bits();
     if (nee) {
-      const V8 wi_world = ls.wi;
-      const V8 wi = shading.to_local(wi_world);
+      const V8 wi = shading.to_local(ls.wi);
       simd::BsdfEval8 e;
       if (settings_.quality.branchless_materials) {
         // The branch-reduced formula (technique 4) stays the scalar one, lane by lane.
-        const LaneOut wo_out(wo), wi_out(wi);
+        const LaneOut wo_out(wo), wi_out(wi), base_out(bsdf.base), spec_out(bsdf.specular);
+        const LaneScalars ax_out(alpha_x), ay_out(alpha_y);
         LaneVecs f;
         LaneFloats pdf;
         for (uint32_t m = nee; m; m &= m - 1) {
           const int i = __builtin_ctz(m);
-          const BsdfEval s = bsdf_evaluate(params[i], wo_out[i], wi_out[i]);
+          BsdfParams p = material_bsdf_[static_cast<size_t>(material_of[i])];
+          p.type = (bsdf.glossy.bits() >> i) & 1 ? MaterialType::kGlossy : p.type;
+          p.base_color = base_out[i];
+          p.alpha_x = ax_out[i];
+          p.alpha_y = ay_out[i];
+          const BsdfEval s = bsdf_evaluate(p, wo_out[i], wi_out[i]);
           f.set(i, s.f);
           pdf.v[i] = s.pdf;
         }
@@ -299,19 +301,19 @@ void PathIntegrator::shade8(ShadeBatch& b) const {
       }
       const M8 lit = M8::from_bits(nee) & (simd::max_component(e.f) > F8(0.0f));
       if (lit.any()) {
-        const F8 lpdf = ls.pdf, ldist = ls.distance;
-        const V8 org = offset_ray_origin(position, normal, wi_world);
-        const F8 tfar = simd::select(ldist < F8(kInf), ldist * (1.0f - 1e-4f), F8(kInf));
-        F8 w(1.0f);
-        if (mis) w = simd::select(M8::from_bits(delta), w, power_heuristic(lpdf, e.pdf));
-        const V8 contribution = beta * e.f * ls.radiance * (simd::abs(wi.z) * w / lpdf);
-        const LaneOut org_out(org), dir_out(wi_world), contribution_out(contribution);
+        const V8 org = offset_ray_origin(position, normal, ls.wi);
+        const F8 tfar =
+            simd::select(ls.distance < F8(kInf), ls.distance * (1.0f - 1e-4f), F8(kInf));
+        F8 weight(1.0f);
+        if (mis) weight = simd::select(ls.is_delta, weight, power_heuristic(ls.pdf, e.pdf));
+        const V8 contribution = beta * e.f * ls.radiance * (simd::abs(wi.z) * weight / ls.pdf);
+        const LaneOut org_out(org), dir_out(ls.wi), contribution_out(contribution);
         const LaneScalars tfar_out(tfar);
         for (uint32_t m = lit.bits(); m; m &= m - 1) {
           const int i = __builtin_ctz(m);
-          ShadowRequest& sr = b.shadow[i];
-          sr.ray = Ray{};
+          ShadowRequest& sr = shadow[i];
           sr.ray.org = org_out[i];
+          sr.ray.tnear = 0.0f;
           sr.ray.dir = dir_out[i];
           sr.ray.tfar = tfar_out[i];
           sr.contribution = contribution_out[i];
@@ -322,38 +324,38 @@ void PathIntegrator::shade8(ShadeBatch& b) const {
   }
 
   // --- The next direction: smooth lobes 8 wide, the delta lobes per lane.
-  simd::BsdfSample8 bs = simd::sample(bsdf, wo, u_light3.get(), u_bsdf0.get(), u_bsdf1.get());
+  const F8 u_lobe = load_u(3), u_roulette = load_u(6);
+  simd::BsdfSample8 bs = simd::sample(bsdf, wo, u_lobe, load_u(4), load_u(5));
   M8 delta = M8::none();
-  if (mirror) {
-    const M8 mm = M8::from_bits(mirror);
-    const M8 ok = mm & (wo.z > F8(0.0f));
-    bs.wi = simd::select(mm, V8(-wo.x, -wo.y, wo.z), bs.wi);
-    bs.weight = simd::select(mm, bsdf.specular, bs.weight);
-    bs.pdf = simd::select(mm, F8(1.0f), bs.pdf);
-    bs.ok = simd::select(mm, ok, bs.ok);
-    delta |= mm;
+  if (is_mirror.any()) {
+    const M8 ok = is_mirror & (wo.z > F8(0.0f));
+    bs.wi = simd::select(is_mirror, V8(-wo.x, -wo.y, wo.z), bs.wi);
+    bs.weight = simd::select(is_mirror, bsdf.specular, bs.weight);
+    bs.pdf = simd::select(is_mirror, F8(1.0f), bs.pdf);
+    bs.ok = simd::select(is_mirror, ok, bs.ok);
+    delta |= is_mirror;
   }
-  const uint32_t dielectric = scatter & ~opaque_bits;
-  if (dielectric) {
+  if (is_dielectric.any()) {
     const LaneOut wo_out(wo);
+    const LaneScalars ul(u_lobe), u0(load_u(4)), u1(load_u(5));
     LaneVecs wi, weight;
     LaneFloats pdf;
     uint32_t ok = 0;
-    for (uint32_t m = dielectric; m; m &= m - 1) {
+    for (uint32_t m = is_dielectric.bits(); m; m &= m - 1) {
       const int i = __builtin_ctz(m);
       BsdfSample s;
-      if (bsdf_sample(params[i], wo_out[i], b.u[i].light[3], {b.u[i].bsdf[0], b.u[i].bsdf[1]}, s))
+      if (bsdf_sample(material_bsdf_[static_cast<size_t>(material_of[i])], wo_out[i], ul[i],
+                      {u0[i], u1[i]}, s))
         ok |= 1u << i;
       wi.set(i, s.wi);
       weight.set(i, s.weight);
       pdf.v[i] = s.pdf;
     }
-    const M8 dm = M8::from_bits(dielectric);
-    bs.wi = simd::select(dm, wi.get(), bs.wi);
-    bs.weight = simd::select(dm, weight.get(), bs.weight);
-    bs.pdf = simd::select(dm, pdf.get(), bs.pdf);
-    bs.ok = simd::select(dm, M8::from_bits(ok), bs.ok);
-    delta |= dm;
+    bs.wi = simd::select(is_dielectric, wi.get(), bs.wi);
+    bs.weight = simd::select(is_dielectric, weight.get(), bs.weight);
+    bs.pdf = simd::select(is_dielectric, pdf.get(), bs.pdf);
+    bs.ok = simd::select(is_dielectric, M8::from_bits(ok), bs.ok);
+    delta |= is_dielectric;
   }
 
   const V8 wi_world = shading.to_world(bs.wi);
@@ -361,40 +363,28 @@ void PathIntegrator::shade8(ShadeBatch& b) const {
   V8 new_beta = beta * bs.weight;
   going &= simd::max_component(new_beta) > F8(0.0f);
   // Russian roulette from russian_roulette_depth on.
-  LaneFloats depth_in;
-  for (uint32_t m = scatter; m; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    depth_in.v[i] = static_cast<float>(b.state[i]->depth + 1);
-  }
-  const M8 roulette = depth_in.get() >= F8(static_cast<float>(settings_.russian_roulette_depth));
+  const simd::I8 depth = simd::I8::load(w.depth.data() + begin);
+  const M8 roulette = (depth + simd::I8(1)) >= simd::I8(settings_.russian_roulette_depth);
   const F8 survive = simd::min(F8(0.95f), simd::max_component(new_beta));
-  going = going.and_not(roulette & (u_bsdf2.get() >= survive));
+  going = going.and_not(roulette & (u_roulette >= survive));
   new_beta = simd::select(roulette, new_beta * (1.0f / survive), new_beta);
-  const V8 org = offset_ray_origin(position, normal, wi_world);
 
-  const LaneOut beta_out(new_beta), org_out(org), dir_out(wi_world);
-  const LaneScalars pdf_out(bs.pdf);
-  const uint32_t going_bits = going.bits(), delta_bits = delta.bits();
-  for (uint32_t m = scatter; m; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    PathState& st = *b.state[i];
-    const uint32_t bit = 1u << i;
-    if (!(going_bits & bit)) {
-      st.alive = false;
-      continue;
-    }
-    const bool is_delta = (delta_bits & bit) != 0;
-    st.beta = beta_out[i];
-    st.previous_was_delta = is_delta;
-    st.specular_chain = st.specular_chain && is_delta;
-    st.previous_pdf = pdf_out[i];
-    st.previous_position = position_out[i];
-    st.ray = Ray{};
-    st.ray.org = org_out[i];
-    st.ray.dir = dir_out[i];
-    ++st.depth;
-    st.alive = true;
-  }
+  // The state of the paths that go on (the others end here, their state no longer read).
+  store3(PathWave::kBetaX, simd::select(going, new_beta, beta));
+  store3(PathWave::kOrgX, simd::select(going, offset_ray_origin(position, normal, wi_world),
+                                       load3(PathWave::kOrgX)));
+  store3(PathWave::kDirX, simd::select(going, wi_world, -wo_world));
+  store3(PathWave::kPrevX, simd::select(going, position, load3(PathWave::kPrevX)));
+  store(PathWave::kPrevPdf, simd::select(going, bs.pdf, load(PathWave::kPrevPdf)));
+  const simd::I8 flags = simd::I8::load(w.flags.data() + begin);
+  // previous_was_delta = the new lobe is delta; specular_chain stays only through deltas.
+  const simd::I8 delta_bits = simd::select(
+      delta, simd::I8(PathWave::kPreviousWasDelta | PathWave::kSpecularChain), simd::I8(0));
+  const simd::I8 new_flags(_mm256_and_si256(
+      delta_bits.v, _mm256_or_si256(flags.v, _mm256_set1_epi32(PathWave::kPreviousWasDelta))));
+  simd::select(going, new_flags, flags).store(w.flags.data() + begin);
+  simd::select(going, depth + simd::I8(1), depth).store(w.depth.data() + begin);
+  return going.bits();
 }
 
 }  // namespace tuneray

@@ -50,8 +50,10 @@ class SamplerBank {
   // Starts slots [first, first + ids.size()) at their pixel samples and writes each one's first
   // four numbers to first4[4 * i .. 4 * i + 3] (the camera sample).
   virtual void start(size_t first, std::span<const PixelSampleId> ids, float* first4) = 0;
-  // For each listed slot, its next `quads` quadruples: out[4 * quads * i ...].
-  virtual void next4(std::span<const uint32_t> slots, int quads, float* out) = 0;
+  // For each listed slot slots[k], its next `quads` quadruples: number j of quadruple q goes to
+  // planes[4 * q + j][positions[k]].
+  virtual void next4(std::span<const uint32_t> slots, std::span<const uint32_t> positions,
+                     int quads, float* const* planes) = 0;
 };
 
 // The bank of a concrete (final) sampler type: its calls are direct and inline.
@@ -68,12 +70,13 @@ class SamplerBankOf final : public SamplerBank {
       for (int j = 0; j < 4; ++j) first4[4 * i + j] = u[j];
     }
   }
-  void next4(std::span<const uint32_t> slots, int quads, float* out) override {
-    for (uint32_t slot : slots) {
-      S& s = samplers_[slot];
-      for (int q = 0; q < quads; ++q, out += 4) {
+  void next4(std::span<const uint32_t> slots, std::span<const uint32_t> positions, int quads,
+             float* const* planes) override {
+    for (size_t k = 0; k < slots.size(); ++k) {
+      S& s = samplers_[slots[k]];
+      for (int q = 0; q < quads; ++q) {
         const std::array<float, 4> u = s.S::next4();
-        for (int j = 0; j < 4; ++j) out[j] = u[j];
+        for (int j = 0; j < 4; ++j) planes[4 * q + j][positions[k]] = u[j];
       }
     }
   }

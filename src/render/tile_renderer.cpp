@@ -41,21 +41,23 @@ PassStats combine(tbb::combinable<PathCounters>& counters, double render_ms, uin
 
 }  // namespace
 
-// What a wavefront worker keeps between chunks and passes: its path slots' samplers, states and
-// queues. Kept by the renderer, so a pass (a frame, when the tuner measures) allocates and
-// page-faults nothing once the buffers have grown to a wave.
+// What a worker keeps between chunks and passes: its path slots' samplers, the wave of paths,
+// its rays and results. Kept by the renderer, so a pass (a frame, when the tuner measures)
+// allocates and page-faults nothing once the buffers have grown to a chunk.
 struct TileRenderer::WaveBuffers {
   std::unique_ptr<SamplerBank> samplers;
-  std::vector<PixelSampleId> ids;
-  std::vector<float> camera_u;  // 4 per path
-  std::vector<PathState> states;
-  std::vector<uint32_t> queue, next_queue, sampled;
-  std::vector<float> shade_u;  // a ShadeSamples per entry of `sampled`
+  std::vector<PixelSampleId> ids;  // per slot
+  std::vector<float> clamp;        // per slot: its pixel's firefly clamp
+  std::vector<float> camera_u;     // 4 per slot
+  PathWave wave;
+  std::array<std::vector<float>, kShadeSamples> u;  // planes over wave positions
+  std::vector<uint32_t> sampled, sampled_at;        // slots drawing numbers, their positions
   std::vector<Ray> rays, shadow_rays;
   std::vector<Hit> hits;
-  std::vector<uint32_t> shadow_owner;
+  std::vector<uint32_t> shadow_owner;  // wave position
   std::vector<Color> shadow_contribution;
-  std::vector<uint8_t> occluded;
+  std::vector<uint8_t> occluded, alive;
+  std::vector<Color> result;  // per slot
 };
 
 struct TileRenderer::WavePool {
@@ -126,6 +128,136 @@ PassStats TileRenderer::run(Film& film, const PixelWork& work,
   return run_tiles(film, work, clamp, on_tile_done);
 }
 
+void TileRenderer::start_paths(WaveBuffers& b, const ClampThresholds& clamp) const {
+  const size_t paths = b.ids.size();
+  if (!b.samplers) b.samplers = prototype_.make_bank();
+  b.camera_u.resize(4 * paths);
+  b.samplers->start(0, b.ids, b.camera_u.data());
+  b.wave.reserve(paths);
+  b.wave.size = paths;
+  b.clamp.resize(paths);
+  b.result.resize(paths);
+  const int width = settings_.width;
+  for (size_t k = 0; k < paths; ++k) {
+    const float* u = &b.camera_u[4 * k];
+    const PixelSampleId& id = b.ids[k];
+    b.wave.start(
+        k,
+        camera_.generate_ray({static_cast<float>(id.x) + u[0], static_cast<float>(id.y) + u[1]},
+                             {u[2], u[3]}),
+        static_cast<uint32_t>(k));
+    b.clamp[k] = clamp.at(static_cast<size_t>(id.y) * width + id.x);
+  }
+}
+
+void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local) const {
+  const bool profile = settings_.quality.profile_phases;
+  const Accel& accel = integrator_.accel();
+  PathWave& wave = b.wave;
+  // The first wave is the camera rays in pixel order; after a bounce they scatter.
+  RayCoherence coherence = RayCoherence::kCoherent;
+  while (wave.size > 0) {
+    // Extend: the closest hits, as one batch or one ray at a time.
+    const size_t n = wave.size;
+    b.hits.resize(n);
+    uint64_t t0 = profile ? now_ns() : 0;
+    if (batched) {
+      b.rays.resize(n);
+      wave.rays(b.rays);
+      accel.intersect_batch(b.rays, b.hits, coherence);
+    } else {
+      for (size_t i = 0; i < n; ++i) {
+        b.hits[i] = Hit{};
+        accel.intersect(wave.ray(i), b.hits[i]);
+      }
+    }
+    coherence = RayCoherence::kIncoherent;
+    if (profile) local.intersect_ns += now_ns() - t0;
+    local.rays += n;
+
+    // The wave's random numbers, drawn together for the paths that will use them.
+    b.sampled.clear();
+    b.sampled_at.clear();
+    for (size_t i = 0; i < n; ++i) {
+      if (!integrator_.needs_samples(wave, i, b.hits[i].valid())) continue;
+      b.sampled.push_back(wave.slot[i]);
+      b.sampled_at.push_back(static_cast<uint32_t>(i));
+    }
+    float* u[kShadeSamples];
+    for (int k = 0; k < kShadeSamples; ++k) {
+      b.u[k].resize(wave.depth.size());
+      u[k] = b.u[k].data();
+    }
+    b.samplers->next4(b.sampled, b.sampled_at, kShadeSamples / 4, u);
+
+    // Shade, eight paths at a time; shadow rays are collected.
+    b.shadow_rays.clear();
+    b.shadow_owner.clear();
+    b.shadow_contribution.clear();
+    b.alive.resize((n + 7) / 8);
+    // Hit data arrives while earlier hits are shaded: indices kFar hits ahead, vertices kNear
+    // ahead (their indices prefetched kFar - kNear hits ago).
+    constexpr size_t kFar = 16, kNear = 8;
+    for (size_t i = 0; i < std::min(n, kFar); ++i) integrator_.prefetch_hit(b.hits[i], 0);
+    for (size_t i = 0; i < std::min(n, kNear); ++i) integrator_.prefetch_hit(b.hits[i], 1);
+    for (size_t i0 = 0; i0 < n; i0 += 8) {
+      const int count = static_cast<int>(std::min<size_t>(8, n - i0));
+      for (size_t i = i0 + kFar; i < std::min(n, i0 + kFar + 8); ++i)
+        integrator_.prefetch_hit(b.hits[i], 0);
+      for (size_t i = i0 + kNear; i < std::min(n, i0 + kNear + 8); ++i)
+        integrator_.prefetch_hit(b.hits[i], 1);
+      ShadowRequest shadow[8];
+      b.alive[i0 / 8] =
+          static_cast<uint8_t>(integrator_.shade8(wave, i0, count, &b.hits[i0], u, shadow));
+      for (int k = 0; k < count; ++k) {
+        if (!shadow[k].active) continue;
+        b.shadow_rays.push_back(shadow[k].ray);
+        b.shadow_owner.push_back(static_cast<uint32_t>(i0) + static_cast<uint32_t>(k));
+        b.shadow_contribution.push_back(shadow[k].contribution);
+      }
+    }
+
+    // Connect: the shadow rays, as one batch or one at a time.
+    const size_t shadows = b.shadow_rays.size();
+    if (shadows > 0) {
+      b.occluded.resize(shadows);
+      t0 = profile ? now_ns() : 0;
+      if (batched) {
+        accel.occluded_batch(b.shadow_rays, b.occluded);
+      } else {
+        for (size_t i = 0; i < shadows; ++i)
+          b.occluded[i] = accel.occluded(b.shadow_rays[i]) ? 1 : 0;
+      }
+      if (profile) local.shadow_ns += now_ns() - t0;
+      local.shadow_rays += shadows;
+      for (size_t i = 0; i < shadows; ++i)
+        if (!b.occluded[i]) wave.add_radiance(b.shadow_owner[i], b.shadow_contribution[i]);
+    }
+
+    // The paths that ended give their values; the others move to the front.
+    for (size_t i = 0; i < n; ++i) {
+      if ((b.alive[i / 8] >> (i % 8)) & 1) continue;
+      const uint32_t slot = wave.slot[i];
+      b.result[slot] = integrator_.finish(wave, i, local, b.clamp[slot]);
+    }
+    wave.compact(b.alive);
+  }
+}
+
+void TileRenderer::add_to_film(const WaveBuffers& b, Film& film) const {
+  // Each pixel's samples are consecutive slots, in index order, as a lone path loop adds them.
+  PixelSamples samples;
+  for (size_t k = 0; k < b.ids.size(); ++k) {
+    const PixelSampleId& id = b.ids[k];
+    samples.add(b.result[k], id.index);
+    const bool last = k + 1 == b.ids.size() || b.ids[k + 1].x != id.x || b.ids[k + 1].y != id.y;
+    if (last) {
+      film.add(static_cast<int>(id.x), static_cast<int>(id.y), samples);
+      samples = PixelSamples{};
+    }
+  }
+}
+
 PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
                                   const std::function<void()>& on_tile_done) const {
   const int ts = std::max(1, settings_.tile_size);
@@ -137,64 +269,28 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
 
   tbb::parallel_for(
       tbb::blocked_range<int>(0, tile_count(), 1), [&](const tbb::blocked_range<int>& r) {
-        // Eight pixel samples at a time, in the tile's pixel and sample order: their paths run
-        // side by side through the integrator's eight lanes, one ray at a time.
-        std::unique_ptr<Sampler> samplers[8];
-        for (auto& sampler : samplers) sampler = prototype_.clone();
-        Sampler* lanes[8];
-        for (int i = 0; i < 8; ++i) lanes[i] = samplers[i].get();
         PathCounters& local = counters.local();
         uint64_t& local_samples = samples.local();
+        WaveBuffers& b = wave_pool_->buffers.local();
         for (int tile = r.begin(); tile != r.end(); ++tile) {
           uint64_t t0 = profile ? now_ns() : 0;
           int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
           int x1 = std::min(x0 + ts, settings_.width), y1 = std::min(y0 + ts, settings_.height);
-          struct LaneSample {
-            int x, y;
-            uint32_t index;
-          };
-          LaneSample group[8];
-          Ray rays[8];
-          float clamps[8];
-          Color values[8];
-          int filled = 0;
-          PixelSamples pixel;
-          int pixel_x = -1, pixel_y = -1;
-          auto flush_pixel = [&] {
-            if (pixel.count > 0) film.add(pixel_x, pixel_y, pixel);
-            pixel = PixelSamples{};
-          };
-          // Traces the group and adds its values to their pixels, in order.
-          auto run_group = [&] {
-            integrator_.radiance8(rays, lanes, clamps, filled, local, values);
-            for (int i = 0; i < filled; ++i) {
-              if (group[i].x != pixel_x || group[i].y != pixel_y) {
-                flush_pixel();
-                pixel_x = group[i].x;
-                pixel_y = group[i].y;
-              }
-              pixel.add(values[i], group[i].index);
-            }
-            local_samples += static_cast<uint64_t>(filled);
-            filled = 0;
-          };
+          // The tile's pixel samples, traced one ray at a time, shaded eight at a time.
+          b.ids.clear();
           for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
-              size_t pixel_index = static_cast<size_t>(y) * settings_.width + x;
-              uint32_t first = work.first(pixel_index), n = work.count(pixel_index);
-              for (uint32_t s = 0; s < n; ++s) {
-                Sampler& sampler = *lanes[filled];
-                sampler.start_pixel_sample(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
-                                           first + s);
-                std::array<float, 4> u = sampler.next4();
-                rays[filled] = camera_.generate_ray({x + u[0], y + u[1]}, {u[2], u[3]});
-                clamps[filled] = clamp.at(pixel_index);
-                group[filled] = {x, y, first + s};
-                if (++filled == 8) run_group();
-              }
+              size_t pixel = static_cast<size_t>(y) * settings_.width + x;
+              uint32_t first = work.first(pixel), n = work.count(pixel);
+              for (uint32_t s = 0; s < n; ++s)
+                b.ids.push_back({static_cast<uint32_t>(x), static_cast<uint32_t>(y), first + s});
             }
-          if (filled > 0) run_group();
-          flush_pixel();
+          if (!b.ids.empty()) {
+            start_paths(b, clamp);
+            trace_paths(b, false, local);
+            add_to_film(b, film);
+            local_samples += b.ids.size();
+          }
           if (profile) local.total_ns += now_ns() - t0;
           if (on_tile_done) on_tile_done();
         }
@@ -211,7 +307,6 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
   const size_t pixel_count = static_cast<size_t>(width) * settings_.height;
   const size_t batch = static_cast<size_t>(std::max(1, settings_.quality.batch_size));
   const bool profile = settings_.quality.profile_phases;
-  const Accel& accel = integrator_.accel();
 
   // Chunks of whole pixels (so each pixel has one writer and sums its samples in order) with
   // at most `batch` paths, unless one pixel alone has more.
@@ -233,119 +328,27 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
   tbb::combinable<PathCounters> counters;
   auto start = std::chrono::steady_clock::now();
 
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, chunk_begin.size() - 1, 1),
-      [&](const tbb::blocked_range<size_t>& r) {
-        PathCounters& local = counters.local();
-        WaveBuffers& b = wave_pool_->buffers.local();
-        if (!b.samplers) b.samplers = prototype_.make_bank();
-        for (size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-          uint64_t t_chunk = profile ? now_ns() : 0;
-          size_t p0 = chunk_begin[chunk], p1 = chunk_begin[chunk + 1];
-
-          // Generate.
-          b.ids.clear();
-          for (size_t p = p0; p < p1; ++p) {
-            uint32_t x = static_cast<uint32_t>(p % width), y = static_cast<uint32_t>(p / width);
-            for (uint32_t s = 0; s < count[p]; ++s) b.ids.push_back({x, y, first[p] + s});
-          }
-          const size_t paths = b.ids.size();
-          b.camera_u.resize(4 * paths);
-          b.samplers->start(0, b.ids, b.camera_u.data());
-          b.states.resize(paths);
-          b.queue.resize(paths);
-          for (size_t k = 0; k < paths; ++k) {
-            const float* u = &b.camera_u[4 * k];
-            b.states[k] = PathIntegrator::start(camera_.generate_ray(
-                {static_cast<float>(b.ids[k].x) + u[0], static_cast<float>(b.ids[k].y) + u[1]},
-                {u[2], u[3]}));
-            b.queue[k] = static_cast<uint32_t>(k);
-          }
-
-          // The first wave is the camera rays in pixel order; after a bounce they scatter.
-          RayCoherence coherence = RayCoherence::kCoherent;
-          while (!b.queue.empty()) {
-            // Extend: one batch of closest-hit rays.
-            size_t n = b.queue.size();
-            b.rays.resize(n);
-            b.hits.resize(n);
-            for (size_t i = 0; i < n; ++i) b.rays[i] = b.states[b.queue[i]].ray;
-            uint64_t t0 = profile ? now_ns() : 0;
-            accel.intersect_batch(b.rays, b.hits, coherence);
-            coherence = RayCoherence::kIncoherent;
-            if (profile) local.intersect_ns += now_ns() - t0;
-            local.rays += n;
-
-            // The wave's random numbers, drawn together for the paths that will use them.
-            b.sampled.clear();
-            for (size_t i = 0; i < n; ++i)
-              if (integrator_.needs_samples(b.states[b.queue[i]], b.hits[i].valid()))
-                b.sampled.push_back(b.queue[i]);
-            constexpr size_t kPerPath = sizeof(ShadeSamples) / sizeof(float);
-            b.shade_u.resize(kPerPath * b.sampled.size());
-            b.samplers->next4(b.sampled, kPerPath / 4, b.shade_u.data());
-
-            // Shade: emission, light sample, next direction; shadow rays are collected.
-            b.shadow_rays.clear();
-            b.shadow_owner.clear();
-            b.shadow_contribution.clear();
-            b.next_queue.clear();
-            // Hit data arrives while earlier hits are shaded: indices kFar hits ahead,
-            // vertices kNear ahead (their indices prefetched kFar - kNear hits ago).
-            constexpr size_t kFar = 16, kNear = 8;
-            for (size_t i = 0; i < std::min(n, kFar); ++i) integrator_.prefetch_hit(b.hits[i], 0);
-            for (size_t i = 0; i < std::min(n, kNear); ++i) integrator_.prefetch_hit(b.hits[i], 1);
-            ShadeBatch batch;
-            for (size_t i0 = 0, next_u = 0; i0 < n; i0 += 8) {
-              batch.count = static_cast<int>(std::min<size_t>(8, n - i0));
-              for (int k = 0; k < batch.count; ++k) {
-                const size_t i = i0 + k;
-                if (i + kFar < n) integrator_.prefetch_hit(b.hits[i + kFar], 0);
-                if (i + kNear < n) integrator_.prefetch_hit(b.hits[i + kNear], 1);
-                PathState& st = b.states[b.queue[i]];
-                batch.state[k] = &st;
-                batch.hit[k] = b.hits[i];
-                if (integrator_.needs_samples(st, b.hits[i].valid()))
-                  std::memcpy(&batch.u[k], &b.shade_u[kPerPath * next_u++], sizeof batch.u[k]);
-              }
-              integrator_.shade8(batch);
-              for (int k = 0; k < batch.count; ++k) {
-                const uint32_t q = b.queue[i0 + k];
-                const ShadowRequest& shadow = batch.shadow[k];
-                if (shadow.active) {
-                  b.shadow_rays.push_back(shadow.ray);
-                  b.shadow_owner.push_back(q);
-                  b.shadow_contribution.push_back(shadow.contribution);
-                }
-                if (b.states[q].alive) b.next_queue.push_back(q);  // compaction
-              }
-            }
-
-            // Connect: shadow rays as one batch.
-            if (!b.shadow_rays.empty()) {
-              b.occluded.resize(b.shadow_rays.size());
-              t0 = profile ? now_ns() : 0;
-              accel.occluded_batch(b.shadow_rays, b.occluded);
-              if (profile) local.shadow_ns += now_ns() - t0;
-              local.shadow_rays += b.shadow_rays.size();
-              for (size_t i = 0; i < b.shadow_rays.size(); ++i)
-                if (!b.occluded[i]) b.states[b.shadow_owner[i]].L += b.shadow_contribution[i];
-            }
-            std::swap(b.queue, b.next_queue);
-          }
-
-          // Accumulate each pixel's samples in index order, as the tile scheduler does.
-          size_t k = 0;
-          for (size_t p = p0; p < p1; ++p) {
-            if (count[p] == 0) continue;
-            PixelSamples samples;
-            for (uint32_t s = 0; s < count[p]; ++s, ++k)
-              samples.add(integrator_.finish(b.states[k], local, clamp.at(p)), first[p] + s);
-            film.add(static_cast<int>(p % width), static_cast<int>(p / width), samples);
-          }
-          if (profile) local.total_ns += now_ns() - t_chunk;
-        }
-      });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunk_begin.size() - 1, 1),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      PathCounters& local = counters.local();
+                      WaveBuffers& b = wave_pool_->buffers.local();
+                      for (size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
+                        uint64_t t_chunk = profile ? now_ns() : 0;
+                        b.ids.clear();
+                        for (size_t p = chunk_begin[chunk]; p < chunk_begin[chunk + 1]; ++p) {
+                          const uint32_t x = static_cast<uint32_t>(p % width);
+                          const uint32_t y = static_cast<uint32_t>(p / width);
+                          for (uint32_t s = 0; s < count[p]; ++s)
+                            b.ids.push_back({x, y, first[p] + s});
+                        }
+                        if (!b.ids.empty()) {
+                          start_paths(b, clamp);
+                          trace_paths(b, true, local);
+                          add_to_film(b, film);
+                        }
+                        if (profile) local.total_ns += now_ns() - t_chunk;
+                      }
+                    });
 
   double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -85,13 +85,19 @@ class TileRenderer {
   PassStats run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
                       const std::function<void()>& on_tile_done) const;
   PassStats run_wavefront(Film& film, const PixelWork& work, const ClampThresholds& clamp) const;
+  struct WaveBuffers;
+  // The steps both schedulers share: the paths of b.ids start on their camera rays, are traced
+  // to their ends (through the accelerator's batch calls or one ray at a time) and are added
+  // to the film, each pixel's samples in index order.
+  void start_paths(WaveBuffers& b, const ClampThresholds& clamp) const;
+  void trace_paths(WaveBuffers& b, bool batched, PathCounters& counters) const;
+  void add_to_film(const WaveBuffers& b, Film& film) const;
 
   const Scene& scene_;
   RenderSettings settings_;
   Camera camera_;
   PathIntegrator integrator_;
   const Sampler& prototype_;
-  struct WaveBuffers;
   struct WavePool;
   std::unique_ptr<WavePool> wave_pool_;  // per-thread wavefront buffers, kept between passes
 };

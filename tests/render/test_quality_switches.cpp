@@ -142,17 +142,25 @@ TEST(QualitySwitches, ClampLimitsTheLengthOfTheIndirectPart) {
   EmbreeNativeAccel accel;
   RenderSettings s;
   PathIntegrator integrator(scene, accel, s);
-  PathState st;
-  st.L = Color(30.0f, 40.0f, 0.0f);  // length 50
-  st.L_camera = Color(5.0f);
+  PathWave wave;
+  wave.reserve(1);
+  wave.size = 1;
+  wave.start(0, Ray{}, 0);
+  auto set = [&wave](int plane, Color c) {
+    wave.plane(plane)[0] = c.x;
+    wave.plane(plane + 1)[0] = c.y;
+    wave.plane(plane + 2)[0] = c.z;
+  };
+  set(PathWave::kLX, Color(30.0f, 40.0f, 0.0f));  // length 50
+  set(PathWave::kCameraX, Color(5.0f));
   PathCounters counters;
-  Color out = integrator.finish(st, counters, 2.0f);
+  Color out = integrator.finish(wave, 0, counters, 2.0f);
   EXPECT_NEAR(out.x, 5.0f + 2.0f * 0.6f, 1e-5f);
   EXPECT_NEAR(out.y, 5.0f + 2.0f * 0.8f, 1e-5f);
   EXPECT_NEAR(out.z, 5.0f, 1e-5f);
-  EXPECT_EQ(integrator.finish(st, counters, 0.0f), st.L_camera + st.L);  // 0 = off
-  st.L = Color(0.3f, 0.4f, 0.0f);                                        // below m: untouched
-  EXPECT_EQ(integrator.finish(st, counters, 2.0f), st.L_camera + st.L);
+  EXPECT_EQ(integrator.finish(wave, 0, counters, 0.0f), Color(35.0f, 45.0f, 5.0f));  // 0 = off
+  set(PathWave::kLX, Color(0.3f, 0.4f, 0.0f));  // below m: untouched
+  EXPECT_EQ(integrator.finish(wave, 0, counters, 2.0f), Color(5.3f, 5.4f, 5.0f));
 }
 
 // The relative clamp's m_i is k times the larger of the mean pixel-value length over i's 3x3
