@@ -187,8 +187,11 @@ int main(int argc, char** argv) {
   for (int s = 0; s < spp; ++s) renderer.render_pass(film, static_cast<uint32_t>(s), 1);
   size_t rays[kPhases] = {};
   for (const Batch& b : recorder.batches) rays[b.phase] += b.rays.size();
-  std::printf("%s: %zu triangles, tuned %s\n", scene_spec.c_str(), scene.triangles.size(),
-              tuned.describe().c_str());
+  const bvh::TreeStats& ts = tuned.tree_stats();
+  std::printf("%s: %zu triangles, tuned %s: %zu nodes, %zu leaves, %.2f triangles a leaf\n",
+              scene_spec.c_str(), scene.triangles.size(), tuned.describe().c_str(), ts.node_count,
+              ts.leaf_count,
+              static_cast<double>(ts.references) / static_cast<double>(ts.leaf_count));
 
   Replayer replay;
   replay.batches = &recorder.batches;
