@@ -62,7 +62,7 @@ bvh::TriPack4 random_pack(uint64_t seed) {
 void BM_TrianglePackMT(benchmark::State& state) {
   const bvh::TriPack4 pack = random_pack(2);
   auto ray = bvh::make_traversal_ray(Vec3f(0.5f, 0.5f, -1), Vec3f(0, 0, 1), 0, kInf, false);
-  bvh::TriangleHit hits[4];
+  bvh::LaneHits hits;
   for (auto _ : state) benchmark::DoNotOptimize(bvh::intersect_pack_mt(pack.p, ray, kInf, hits));
   state.SetItemsProcessed(state.iterations() * 4);
 }
@@ -71,7 +71,7 @@ BENCHMARK(BM_TrianglePackMT);
 void BM_TwoTrianglePacksMT(benchmark::State& state) {
   const bvh::TriPack4 a = random_pack(2), b = random_pack(4);
   auto ray = bvh::make_traversal_ray(Vec3f(0.5f, 0.5f, -1), Vec3f(0, 0, 1), 0, kInf, false);
-  bvh::TriangleHit hits[8];
+  bvh::LaneHits hits;
   for (auto _ : state)
     benchmark::DoNotOptimize(bvh::intersect_two_packs_mt(a.p, b.p, ray, kInf, hits));
   state.SetItemsProcessed(state.iterations() * 8);

@@ -22,66 +22,79 @@ constexpr int kSwitchThreshold = 3;
 // this many rays reach them, else ray by ray over the packs (two packs per pass).
 constexpr int kLeafSwitchThreshold = 2;
 
-// Up to 8 rays with a common octant, in SoA for the box and triangle tests, and as single rays
-// for the hand-over to the single-ray traversal.
+// Up to 8 rays with a common octant, in SoA for the box and triangle tests. A lane's rays as a
+// single ray (for the hand-over to the single-ray traversal and the ray-by-ray leaf test) is
+// assembled from the rows when first asked for (lane_ray): most camera rays of an open scene end
+// in the stream, and filling eight single rays per packet up front was a third of the camera
+// streams' time on bmw-m6.
 struct Packet {
   TraversalRay ray[kPacketSize];
+  uint32_t ray_made = 0;  // bit i: ray[i] is assembled
   alignas(32) float tfar[kPacketSize];
   Hit hit[kPacketSize];
   __m256 inv[3], org_inv[3], tnear, org[3], dir[3];
   int near_row[3], far_row[3];
+  // The rows of the single rays: per axis, and the lanes whose clamped direction is >= 0.
+  alignas(32) float org_of[3][kPacketSize], dir_of[3][kPacketSize], inv_of[3][kPacketSize],
+      org_inv_of[3][kPacketSize], tnear_of[kPacketSize], tfar_of[kPacketSize];
+  int nonnegative[3];
 };
 
 // The rays must share the octant `octant` (the packet box test picks one near plane per axis).
 // Each lane's terms are those make_traversal_ray gives the ray alone (the same clamp of tiny
 // direction components, the same correctly rounded division and product), computed 8 at a time.
 void make_packet(const Ray* rays, const uint32_t* index, int count, int octant, Packet& pk) {
-  alignas(32) float org[3][kPacketSize], dir[3][kPacketSize], tnear[kPacketSize], tfar[kPacketSize];
   for (int i = 0; i < kPacketSize; ++i) {
     // Padding lanes repeat the first ray (so they widen no frustum) but never enter a box nor
     // hit a triangle.
     const Ray& ray = rays[index[i < count ? i : 0]];
     for (int a = 0; a < 3; ++a) {
-      org[a][i] = ray.org[a];
-      dir[a][i] = ray.dir[a];
+      pk.org_of[a][i] = ray.org[a];
+      pk.dir_of[a][i] = ray.dir[a];
     }
-    tnear[i] = ray.tnear;
-    tfar[i] = ray.tfar;
+    pk.tnear_of[i] = ray.tnear;
+    pk.tfar_of[i] = ray.tfar;
     pk.tfar[i] = i < count ? ray.tfar : -kInf;
     pk.hit[i] = Hit{};
   }
-  alignas(32) float inv[3][kPacketSize], org_inv[3][kPacketSize];
-  int nonnegative[3];
   const __m256 sign_bit = _mm256_set1_ps(-0.0f), tiny = _mm256_set1_ps(1e-18f);
   for (int a = 0; a < 3; ++a) {
-    const __m256 d = _mm256_load_ps(dir[a]);
+    const __m256 d = _mm256_load_ps(pk.dir_of[a]);
     const __m256 small = _mm256_cmp_ps(_mm256_andnot_ps(sign_bit, d), tiny, _CMP_LT_OQ);
     const __m256 clamped =
         _mm256_blendv_ps(d, _mm256_or_ps(_mm256_and_ps(d, sign_bit), tiny), small);
-    pk.org[a] = _mm256_load_ps(org[a]);
+    pk.org[a] = _mm256_load_ps(pk.org_of[a]);
     pk.dir[a] = d;
     pk.inv[a] = _mm256_div_ps(_mm256_set1_ps(1.0f), clamped);
     pk.org_inv[a] = _mm256_mul_ps(pk.org[a], pk.inv[a]);
-    _mm256_store_ps(inv[a], pk.inv[a]);
-    _mm256_store_ps(org_inv[a], pk.org_inv[a]);
-    nonnegative[a] = _mm256_movemask_ps(_mm256_cmp_ps(clamped, _mm256_setzero_ps(), _CMP_GE_OQ));
+    _mm256_store_ps(pk.inv_of[a], pk.inv[a]);
+    _mm256_store_ps(pk.org_inv_of[a], pk.org_inv[a]);
+    pk.nonnegative[a] = _mm256_movemask_ps(_mm256_cmp_ps(clamped, _mm256_setzero_ps(), _CMP_GE_OQ));
   }
-  pk.tnear = _mm256_load_ps(tnear);
-  for (int i = 0; i < kPacketSize; ++i) {
-    TraversalRay& r = pk.ray[i];
-    for (int a = 0; a < 3; ++a) {
-      r.org[a] = org[a][i];
-      r.dir[a] = dir[a][i];
-      r.inv[a] = inv[a][i];
-      r.org_inv[a] = org_inv[a][i];
-      r.near_row[a] = (nonnegative[a] >> i) & 1 ? a : a + 3;
-    }
-    r.tnear = tnear[i];
-    r.tfar = tfar[i];
-  }
+  pk.tnear = _mm256_load_ps(pk.tnear_of);
+  pk.ray_made = 0;
   near_rows_of_octant(octant, pk.near_row);
   for (int a = 0; a < 3; ++a)
     pk.far_row[a] = pk.near_row[a] < 3 ? pk.near_row[a] + 3 : pk.near_row[a] - 3;
+}
+
+// Lane i as the single ray make_traversal_ray makes of it (without the watertight shear, which
+// the fast test does not read).
+inline const TraversalRay& lane_ray(Packet& pk, int i) {
+  if (!((pk.ray_made >> i) & 1)) {
+    TraversalRay& r = pk.ray[i];
+    for (int a = 0; a < 3; ++a) {
+      r.org[a] = pk.org_of[a][i];
+      r.dir[a] = pk.dir_of[a][i];
+      r.inv[a] = pk.inv_of[a][i];
+      r.org_inv[a] = pk.org_inv_of[a][i];
+      r.near_row[a] = (pk.nonnegative[a] >> i) & 1 ? a : a + 3;
+    }
+    r.tnear = pk.tnear_of[i];
+    r.tfar = pk.tfar_of[i];
+    pk.ray_made |= 1u << i;
+  }
+  return pk.ray[i];
 }
 
 inline __m256 lanes_of(uint32_t mask) {
@@ -165,7 +178,7 @@ inline void intersect_leaf_packet(NodeRef leaf, Packet& pk, uint32_t mask) {
     while (mask) {
       const int i = __builtin_ctz(mask);
       mask &= mask - 1;
-      intersect_fast_leaf<false, false>(leaf, pk.ray[i], pk.tfar[i], &pk.hit[i]);
+      intersect_fast_leaf<false, false>(leaf, lane_ray(pk, i), pk.tfar[i], &pk.hit[i]);
     }
     return;
   }
@@ -311,7 +324,7 @@ void traverse_stream(const TraversalContext& ctx, Stream& s, uint64_t live) {
           const int i = __builtin_ctzll(rays);
           Packet& pk = s.pk[i / kPacketSize];
           const int lane = i % kPacketSize;
-          traverse_from<N, false, false, false>(ctx, cur, pk.ray[lane], pk.tfar[lane],
+          traverse_from<N, false, false, false>(ctx, cur, lane_ray(pk, lane), pk.tfar[lane],
                                                 &pk.hit[lane]);
         }
         break;

@@ -70,7 +70,24 @@ uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, ui
         if (hit) entered.add(hit, 1u << i);
       }
       int children = entered.children;
-      if (!children) {  // no ray goes on below this node: no leaf to test
+      if (const int leaves = children & leaf_children<N>(node.child)) {
+        // Entered leaves are tested here, all requested first so their cache misses overlap
+        // (a stream of scattered rays reaches several leaves of a node at once); an any hit
+        // ends a ray, so the order of the tests changes no answer.
+        children &= ~leaves;
+        for (int m = leaves; m; m &= m - 1) prefetch_leaf<false>(node.child[__builtin_ctz(m)]);
+        for (int m = leaves; m; m &= m - 1) {
+          const int c = __builtin_ctz(m);
+          for (uint32_t todo = entered.rays[c] & ~blocked; todo; todo &= todo - 1) {
+            const int i = __builtin_ctz(todo);
+            float tfar = ray[i].tfar;
+            if (intersect_fast_leaf<false, true>(node.child[c], ray[i], tfar, nullptr))
+              blocked |= 1u << i;
+          }
+        }
+        if (blocked == live) return blocked;
+      }
+      if (!children) {  // no ray goes on below this node
         rays = 0;
         break;
       }
@@ -84,7 +101,8 @@ uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, ui
         stack[sp++] = {node.child[c], entered.rays[c]};
       }
       cur = node.child[first];
-      rays = entered.rays[first];
+      rays = entered.rays[first] & ~blocked;
+      if (!rays) break;
     }
     for (uint32_t m = rays; m; m &= m - 1) {
       const int i = __builtin_ctz(m);

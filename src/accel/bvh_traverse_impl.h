@@ -199,7 +199,7 @@ template <bool kRobust, bool kAnyHit>
       // equal distances are settled by the lower triangle index whatever the visiting order
       // (single rays and packets visit in different orders and must agree bit for bit).
       const float filter_tfar = kAnyHit ? tfar : tfar * kTieSlack;
-      TriangleHit th[8];
+      LaneHits th;
       int mask;
       const TriPack4* first = &p;
       if (k + 1 < pack_count) {
@@ -214,15 +214,32 @@ template <bool kRobust, bool kAnyHit>
         const int lane = __builtin_ctz(mask);
         mask &= mask - 1;
         const uint32_t prim = first[lane / 4].prim[lane % 4];
-        if (is_nearer_hit(th[lane].t, prim, tfar, *hit)) {
+        if (is_nearer_hit(th.t[lane], prim, tfar, *hit)) {
           found = true;
-          tfar = th[lane].t;
-          *hit = Hit{th[lane].t, prim, th[lane].u, th[lane].v};
+          tfar = th.t[lane];
+          *hit = Hit{th.t[lane], prim, th.u[lane], th.v[lane]};
         }
       }
     }
   }
   return found;
+}
+
+// Bit i set = child i of a node is a leaf (an empty slot is not).
+template <int N>
+inline int leaf_children(const NodeRef (&child)[N]) {
+  if constexpr (N == 8 || N == 4) {
+    int bits = 0;
+    for (int k = 0; k < N; k += 4) {
+      const __m256i refs = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(child + k));
+      bits |= _mm256_movemask_pd(_mm256_castsi256_pd(_mm256_slli_epi64(refs, 63))) << k;
+    }
+    return bits;
+  } else {
+    int bits = 0;
+    for (int i = 0; i < N; ++i) bits |= is_leaf(child[i]) ? 1 << i : 0;
+    return bits;
+  }
 }
 
 // Brings a block the ray will visit soon into L1 while the current one is tested: the lines of an
@@ -234,6 +251,15 @@ inline void prefetch_block(NodeRef ref) {
   _mm_prefetch(p + 64, _MM_HINT_T0);
   if constexpr (N >= 4) _mm_prefetch(p + 128, _MM_HINT_T0);
   if constexpr (N >= 8) _mm_prefetch(p + 192, _MM_HINT_T0);
+}
+
+// The header and first pack of a fast leaf (three lines), or a compact leaf's header and ids.
+template <bool kCompact>
+inline void prefetch_leaf(NodeRef ref) {
+  const char* p = ref_ptr<const char>(ref);
+  _mm_prefetch(p, _MM_HINT_T0);
+  _mm_prefetch(p + 64, _MM_HINT_T0);
+  if constexpr (!kCompact) _mm_prefetch(p + 128, _MM_HINT_T0);
 }
 
 // One ray through the subtree at `start`. Closest hit: `tfar` and `*hit` are updated on every
@@ -264,6 +290,35 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
         }
       }
       if (mask == 0) goto pop;
+      if (const int leaves = mask & leaf_children<N>(node.child)) {
+        // Leaves are tested as soon as their box is entered, not pushed and popped: a ray
+        // enters several small sibling leaves of a node at once, and their hits cull the inner
+        // children before they are visited.
+        mask &= ~leaves;
+        // All of them are requested before the first is tested, so their cache misses overlap.
+        for (int m = leaves & (leaves - 1); m; m &= m - 1)
+          prefetch_leaf<kCompact>(node.child[__builtin_ctz(m)]);
+        for (int m = leaves; m; m &= m - 1) {
+          const NodeRef leaf = node.child[__builtin_ctz(m)];
+          bool leaf_hit;
+          if constexpr (kCompact)
+            leaf_hit = intersect_compact_leaf<kRobust, kAnyHit>(ref_ptr<LeafHeader>(leaf), ctx, r,
+                                                                tfar, hit);
+          else
+            leaf_hit = intersect_fast_leaf<kRobust, kAnyHit>(leaf, r, tfar, hit);
+          if (leaf_hit) {
+            if constexpr (kAnyHit) return true;
+            found = true;
+          }
+        }
+        if constexpr (!kAnyHit) {
+          for (int m = mask; m; m &= m - 1) {
+            const int i = __builtin_ctz(m);
+            if (!(dist[i] <= tfar)) mask &= ~(1 << i);
+          }
+        }
+        if (mask == 0) goto pop;
+      }
       const int i0 = __builtin_ctz(mask);
       mask &= mask - 1;
       NodeRef c0 = node.child[i0];
@@ -284,43 +339,40 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
         continue;
       } else {
         const int i1 = __builtin_ctz(mask);
-        mask &= mask - 1;
-        NodeRef c1 = node.child[i1];
-        float d0 = dist[i0], d1 = dist[i1];
-        if (mask == 0) {
-          // Two children, the common case: visit the nearer, push the farther.
-          if (d1 < d0) {
-            std::swap(c0, c1);
-            std::swap(d0, d1);
-          }
-          prefetch_block<N>(c1);
-          stack[sp++] = {c1, d1};
-          cur = c0;
+        const int rest = mask & (mask - 1);
+        if (rest == 0) {
+          // Two children, the common case: visit the nearer, push the farther (the first on a
+          // tie). Selected without a branch: which one is nearer is a coin flip to the predictor.
+          const NodeRef c1 = node.child[i1];
+          const float d0 = dist[i0], d1 = dist[i1];
+          const bool swap = d1 < d0;
+          const NodeRef near = swap ? c1 : c0, far = swap ? c0 : c1;
+          prefetch_block<N>(far);
+          stack[sp++] = {far, swap ? d0 : d1};
+          cur = near;
           continue;
         }
-        // Three or more: push all, sort the new entries by descending distance (insertion
-        // sort over at most N), continue with the nearest.
-        StackEntry* base = stack + sp;
-        base[0] = {c0, d0};
-        base[1] = {c1, d1};
-        int count = 2;
-        do {
-          const int i = __builtin_ctz(mask);
-          mask &= mask - 1;
-          base[count++] = {node.child[i], dist[i]};
-        } while (mask);
-        for (int a = 1; a < count; ++a) {
-          const StackEntry e = base[a];
-          int b = a;
-          while (b > 0 && base[b - 1].dist < e.dist) {
-            base[b] = base[b - 1];
-            --b;
+        if constexpr (N >= 4) {
+          // Three or more: pushed in descending order of distance, ties in slot order (as a
+          // stable sort leaves them), and the nearest is visited. Each child's place is its
+          // rank, counted with one SIMD comparison against all distances instead of an insertion
+          // sort's data-dependent branches.
+          using L = LanesOf<N>;
+          const int hit = mask | (1 << i0);
+          const typename L::V all = L::load(dist);
+          StackEntry* base = stack + sp;
+          for (int m = hit; m; m &= m - 1) {
+            const int i = __builtin_ctz(m);
+            const typename L::V d = L::set1(dist[i]);
+            const int before =
+                L::movemask(L::gt(all, d)) | (L::movemask(L::eq(all, d)) & ((1 << i) - 1));
+            base[__builtin_popcount(before & hit)] = {node.child[i], dist[i]};
           }
-          base[b] = e;
+          const int count = __builtin_popcount(hit);
+          for (int a = 0; a < count - 1; ++a) prefetch_block<N>(base[a].ref);
+          sp += count - 1;
+          cur = base[count - 1].ref;
         }
-        for (int a = 0; a < count - 1; ++a) prefetch_block<N>(base[a].ref);
-        sp += count - 1;
-        cur = base[count - 1].ref;
       }
     }
     {

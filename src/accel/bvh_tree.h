@@ -29,8 +29,10 @@ class Tree {
   // Embree handle (the nodes it held are no longer referenced).
   void adopt_buffer(void* buffer, size_t bytes, NodeRef root);
   // Takes ownership of a buffer from aligned_alloc holding the inner nodes of `root`, of shape
-  // `shape`, whose leaves are still in the Embree handle's allocator (kept).
-  void adopt_collapsed(void* nodes, size_t bytes, NodeRef root, TreeShape shape);
+  // `shape`, whose leaves are still in the Embree handle's allocator (kept), but for those in
+  // `leaves` (from aligned_alloc too, may be null): leaves the collapse made by merging others.
+  void adopt_collapsed(void* nodes, size_t bytes, NodeRef root, TreeShape shape,
+                       void* leaves = nullptr);
   void reset();
 
   NodeRef root() const { return root_; }
@@ -45,6 +47,7 @@ class Tree {
   RTCBVH handle_ = nullptr;
   void* buffer_ = nullptr;
   size_t buffer_bytes_ = 0;
+  void* leaf_buffer_ = nullptr;  // merged leaves of a collapsed tree
   bool collapsed_ = false;
 };
 

@@ -62,6 +62,12 @@ struct TriangleHit {
   float t, u, v;
 };
 
+// t, u, v of the lanes a pack test hit, one row each: the test stores its vectors as they are
+// (handing out one {t, u, v} per lane cost a transposition of three vectors on every hit).
+struct LaneHits {
+  alignas(32) float t[8], u[8], v[8];
+};
+
 // The Möller-Trumbore test is written once over a SIMD width: 4 lanes (SSE, one pack) or 8 lanes
 // (AVX2, two packs side by side). Each lane computes exactly the same operations at either width,
 // so a triangle gives the same t, u, v whichever path tests it. The traversal's box test of 4- and
@@ -84,6 +90,7 @@ struct Lanes4 {
   static V ge(V a, V b) { return _mm_cmpge_ps(a, b); }
   static V le(V a, V b) { return _mm_cmple_ps(a, b); }
   static V lt(V a, V b) { return _mm_cmplt_ps(a, b); }
+  static V eq(V a, V b) { return _mm_cmpeq_ps(a, b); }
   static int movemask(V a) { return _mm_movemask_ps(a); }
   static void store(float* p, V a) { _mm_store_ps(p, a); }
   static V load(const float* p) { return _mm_load_ps(p); }
@@ -114,6 +121,7 @@ struct Lanes8 {
   static V ge(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
   static V le(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
   static V lt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
+  static V eq(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_EQ_OQ); }
   static int movemask(V a) { return _mm256_movemask_ps(a); }
   static void store(float* p, V a) { _mm256_storeu_ps(p, a); }
   static V load(const float* p) { return _mm256_load_ps(p); }
@@ -132,7 +140,7 @@ using LanesOf = std::conditional_t<N == 8, Lanes8, Lanes4>;
 // fills t/u/v of those lanes.
 template <class L>
 inline int intersect_lanes_mt(const typename L::V (&rows)[9], const TraversalRay& r, float tfar,
-                              TriangleHit* out) {
+                              LaneHits& out) {
   using V = typename L::V;
   const V ox = L::set1(r.org.x), oy = L::set1(r.org.y), oz = L::set1(r.org.z);
   const V dx = L::set1(r.dir.x), dy = L::set1(r.dir.y), dz = L::set1(r.dir.z);
@@ -165,18 +173,16 @@ inline int intersect_lanes_mt(const typename L::V (&rows)[9], const TraversalRay
   const int mask = L::movemask(valid);
   if (mask) {
     const V rcp = L::div(L::set1(1.0f), abs_det);
-    alignas(32) float ts[L::kWidth], us[L::kWidth], vs[L::kWidth];
-    L::store(ts, L::mul(t, rcp));
-    L::store(us, L::mul(u, rcp));
-    L::store(vs, L::mul(v, rcp));
-    for (int i = 0; i < L::kWidth; ++i) out[i] = {ts[i], us[i], vs[i]};
+    L::store(out.t, L::mul(t, rcp));
+    L::store(out.u, L::mul(u, rcp));
+    L::store(out.v, L::mul(v, rcp));
   }
   return mask;
 }
 
 // Lanes (bits 0..3) of one pack hit in (tnear, tfar); fills t/u/v of those lanes.
 inline int intersect_pack_mt(const float (*p)[4], const TraversalRay& r, float tfar,
-                             TriangleHit out[4]) {
+                             LaneHits& out) {
   __m128 rows[9];
   for (int k = 0; k < 9; ++k) rows[k] = _mm_load_ps(p[k]);
   return intersect_lanes_mt<Lanes4>(rows, r, tfar, out);
@@ -184,7 +190,7 @@ inline int intersect_pack_mt(const float (*p)[4], const TraversalRay& r, float t
 
 // Two packs in one AVX2 pass: lanes 0..3 are pack a, 4..7 pack b.
 inline int intersect_two_packs_mt(const float (*a)[4], const float (*b)[4], const TraversalRay& r,
-                                  float tfar, TriangleHit out[8]) {
+                                  float tfar, LaneHits& out) {
   __m256 rows[9];
   for (int k = 0; k < 9; ++k)
     rows[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(a[k])), _mm_load_ps(b[k]), 1);

@@ -27,7 +27,8 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   bvh::BuildResult result;
   try {
     result = bvh::build_tree(geometry, config_, *device_, primitives_, *next);
-    if (config_.collapses()) bvh::collapse_to_wide(*next, result.inner_nodes);
+    // Leaves merge up to the configuration's largest leaf, so max_leaf keeps its meaning.
+    if (config_.collapses()) bvh::collapse_to_wide(*next, result.inner_nodes, config_.max_leaf);
     if (config_.is_static) bvh::relayout_depth_first(*next);
   } catch (...) {
     tree_.reset();

@@ -1,0 +1,224 @@
+// Replays a wavefront render's ray batches through both backends' batch entry points, phase by
+// phase (camera rays, bounce rays, shadow rays), so the kernels the render calls are timed on
+// the render's own rays without the shading between them.
+//
+//   batch_replay SCENE.json [--scenes-dir DIR] [--bvh CONFIG] [--size WxH] [--spp N]
+//                [--repeats R] [--pollute KiB] [--single 0|1]
+//
+// The batches are recorded once from a single-threaded render with native Embree (a pass-through
+// accelerator keeps a copy of every batch), then traced again and again, one thread, native and
+// tuned taking turns per repeat; each phase's time is the thread's CPU time (other jobs on a
+// shared machine do not inflate it), the median over repeats. `--pollute` reads that many KiB
+// of an unrelated buffer after every batch, as the render's shading evicts part of the tree from
+// the caches between batches. `--single 1` adds native Embree called once per ray (Accel's
+// default batch loop), the yardstick of `bench traversal`'s ray sets.
+#include <tbb/global_control.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "accel/embree_native.h"
+#include "accel/tuned_bvh.h"
+#include "render/blue_noise_sampler.h"
+#include "render/film.h"
+#include "render/tile_renderer.h"
+#include "scene/load.h"
+
+namespace tuneray {
+namespace {
+
+enum Phase { kCamera, kBounce, kShadow, kPhases };
+const char* const kPhaseName[kPhases] = {"camera", "bounce", "shadow"};
+
+struct Batch {
+  Phase phase;
+  std::vector<Ray> rays;
+};
+
+// Forwards every call to `inner` and keeps a copy of every batch (single-threaded use only).
+class RecordingAccel final : public Accel {
+ public:
+  explicit RecordingAccel(const Accel& inner) : inner_(inner) {}
+  std::string name() const override { return inner_.name(); }
+  std::string describe() const override { return inner_.describe(); }
+  BuildStats build(const GeometryView&) override { return {}; }
+  bool intersect(const Ray& ray, Hit& hit) const override { return inner_.intersect(ray, hit); }
+  bool occluded(const Ray& ray) const override { return inner_.occluded(ray); }
+  void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
+                       RayCoherence coherence) const override {
+    batches.push_back({coherence == RayCoherence::kCoherent ? kCamera : kBounce,
+                       std::vector<Ray>(rays.begin(), rays.end())});
+    inner_.intersect_batch(rays, hits, coherence);
+  }
+  void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> occluded) const override {
+    batches.push_back({kShadow, std::vector<Ray>(rays.begin(), rays.end())});
+    inner_.occluded_batch(rays, occluded);
+  }
+  mutable std::vector<Batch> batches;
+
+ private:
+  const Accel& inner_;
+};
+
+// Native Embree one ray per call: the batch entry points are Accel's defaults, which loop over
+// the single-ray calls (what our kernels are measured against in `bench traversal`).
+class SingleRayAccel final : public Accel {
+ public:
+  explicit SingleRayAccel(const Accel& inner) : inner_(inner) {}
+  std::string name() const override { return inner_.name(); }
+  std::string describe() const override { return inner_.describe(); }
+  BuildStats build(const GeometryView&) override { return {}; }
+  bool intersect(const Ray& ray, Hit& hit) const override { return inner_.intersect(ray, hit); }
+  bool occluded(const Ray& ray) const override { return inner_.occluded(ray); }
+
+ private:
+  const Accel& inner_;
+};
+
+double thread_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+double lowest(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+}
+
+struct Replayer {
+  const std::vector<Batch>* batches;
+  std::vector<char> junk;
+  std::vector<Hit> hits;
+  std::vector<uint8_t> blocked;
+  volatile unsigned sink = 0;
+
+  void pollute() {
+    unsigned s = 0;
+    for (size_t i = 0; i < junk.size(); i += 64) s += static_cast<unsigned char>(junk[i]);
+    sink = sink + s;
+  }
+
+  // Seconds per phase of one pass over all batches; also a checksum of the answers.
+  std::vector<double> run(const Accel& accel, uint64_t& checksum) {
+    std::vector<double> seconds(kPhases, 0.0);
+    checksum = 0;
+    for (const Batch& b : *batches) {
+      if (!junk.empty()) pollute();
+      const double t0 = thread_seconds();
+      if (b.phase == kShadow) {
+        blocked.resize(b.rays.size());
+        accel.occluded_batch(b.rays, blocked);
+        seconds[b.phase] += thread_seconds() - t0;
+        for (uint8_t x : blocked) checksum = checksum * 3 + x;
+      } else {
+        hits.resize(b.rays.size());
+        accel.intersect_batch(
+            b.rays, hits, b.phase == kCamera ? RayCoherence::kCoherent : RayCoherence::kIncoherent);
+        seconds[b.phase] += thread_seconds() - t0;
+        for (const Hit& h : hits) checksum = checksum * 31 + h.prim;
+      }
+    }
+    return seconds;
+  }
+};
+
+}  // namespace
+}  // namespace tuneray
+
+int main(int argc, char** argv) {
+  using namespace tuneray;
+  if (argc < 2) {
+    std::fprintf(stderr,
+                 "usage: batch_replay SCENE [--scenes-dir D] [--bvh C] [--size WxH] [--spp N] "
+                 "[--repeats R] [--pollute KiB] [--single 0|1]\n");
+    return 2;
+  }
+  std::string scene_spec = argv[1], scenes_dir, bvh;
+  int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0;
+  for (int i = 2; i + 1 < argc; i += 2) {
+    const std::string key = argv[i], value = argv[i + 1];
+    if (key == "--scenes-dir") {
+      scenes_dir = value;
+    } else if (key == "--bvh") {
+      bvh = value;
+    } else if (key == "--size") {
+      std::sscanf(value.c_str(), "%dx%d", &width, &height);
+    } else if (key == "--spp") {
+      spp = std::atoi(value.c_str());
+    } else if (key == "--repeats") {
+      repeats = std::atoi(value.c_str());
+    } else if (key == "--pollute") {
+      pollute_kib = std::atoi(value.c_str());
+    } else if (key == "--single") {
+      single = std::atoi(value.c_str());
+    } else {
+      std::fprintf(stderr, "unknown option %s\n", key.c_str());
+      return 2;
+    }
+  }
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  LoadOptions load;
+  load.scenes_dir = scenes_dir;
+  Scene scene = load_scene(scene_spec, load);
+  const GeometryView g{scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+                       scene.triangles.size()};
+  EmbreeNativeAccel native;
+  native.build(g);
+  TunedBvhAccel tuned(parse_bvh_config(bvh));
+  tuned.build(g);
+
+  RecordingAccel recorder(native);
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, 0);
+  TileRenderer renderer(scene, recorder, scene.cameras.at(0), settings, *sampler);
+  Film film(width, height);
+  for (int s = 0; s < spp; ++s) renderer.render_pass(film, static_cast<uint32_t>(s), 1);
+  size_t rays[kPhases] = {};
+  for (const Batch& b : recorder.batches) rays[b.phase] += b.rays.size();
+  const bvh::TreeStats& ts = tuned.tree_stats();
+  std::printf("%s: %zu triangles, tuned %s: %zu nodes, %zu leaves, %.2f triangles a leaf\n",
+              scene_spec.c_str(), scene.triangles.size(), tuned.describe().c_str(), ts.node_count,
+              ts.leaf_count,
+              static_cast<double>(ts.references) / static_cast<double>(ts.leaf_count));
+
+  Replayer replay;
+  replay.batches = &recorder.batches;
+  replay.junk.assign(static_cast<size_t>(pollute_kib) << 10, 1);
+  SingleRayAccel native_single(native);
+  std::vector<double> times[3][kPhases];
+  uint64_t sums[3] = {};
+  const Accel* accels[3] = {&native, &tuned, &native_single};
+  for (int r = -1; r < repeats; ++r) {  // r = -1 warms up
+    for (int a = 0; a < 3; ++a) {
+      const int which = (r & 1) ? 2 - a : a;  // alternate the order
+      if (which == 2 && !single) continue;
+      const std::vector<double> s = replay.run(*accels[which], sums[which]);
+      if (r < 0) continue;
+      for (int p = 0; p < kPhases; ++p) times[which][p].push_back(s[p]);
+    }
+  }
+  // Medians, and the lowest of the repeats (the least disturbed by other jobs on the machine).
+  std::printf("%-7s %9s %10s %10s %7s %10s %10s %7s %10s\n", "phase", "rays", "native ms",
+              "tuned ms", "n/t", "native lo", "tuned lo", "n/t lo", "nat 1/call");
+  for (int p = 0; p < kPhases; ++p) {
+    const double n = median(times[0][p]) * 1e3, t = median(times[1][p]) * 1e3;
+    const double nl = lowest(times[0][p]) * 1e3, tl = lowest(times[1][p]) * 1e3;
+    std::printf("%-7s %9zu %10.2f %10.2f %7.3f %10.2f %10.2f %7.3f %10.2f\n", kPhaseName[p],
+                rays[p], n, t, n / t, nl, tl, nl / tl, median(times[2][p]) * 1e3);
+  }
+  // Variants of the tuned kernels must give the same answers: compare this across binaries.
+  std::printf("tuned answers checksum %016llx\n", static_cast<unsigned long long>(sums[1]));
+  return 0;
+}
