@@ -25,7 +25,7 @@ class Collapser {
   using Source = NodeOf<N, kCompact>;
   using Wide = NodeOf<kWide, kCompact>;
 
-  static void run(Tree& tree, size_t max_inner_nodes, int merge_limit) {
+  static void run(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost) {
     // Every wide node takes the place of at least one source node, so the source's count bounds
     // the buffer; pages past the nodes written are never touched.
     const size_t bytes = max_inner_nodes * whole_lines(sizeof(Wide));
@@ -44,6 +44,7 @@ class Collapser {
       if (!leaves) throw std::bad_alloc();
       c.merge_limit_ = merge_limit;
       c.flatten_limit_ = merge_limit;
+      c.pack_cost_ = pack_cost;
       c.leaf_base_ = leaves.get();
       c.leaf_capacity_ = leaf_capacity;
     }
@@ -81,6 +82,11 @@ class Collapser {
     return s;
   }
 
+  // What testing `triangles` in packs of 4 costs, a node visit costing 1.
+  float packs_cost(int triangles) const {
+    return pack_cost_ * static_cast<float>((triangles + 3) / 4);
+  }
+
   // Triangles below `ref`, or flatten_limit_ + 1 as soon as there are more.
   int triangles_below(NodeRef ref) const {
     if (is_leaf(ref)) return static_cast<int>(ref_ptr<LeafHeader>(ref)->prim_count);
@@ -98,7 +104,7 @@ class Collapser {
   float best_cost(NodeRef ref, float area, int& triangles) const {
     if (is_leaf(ref)) {
       triangles = static_cast<int>(ref_ptr<LeafHeader>(ref)->prim_count);
-      return area * static_cast<float>((triangles + 3) / 4);
+      return area * packs_cost(triangles);
     }
     const Source& n = *ref_ptr<Source>(ref);
     float cost = area;
@@ -109,8 +115,7 @@ class Collapser {
       cost += best_cost(n.child[i], child_box<N, kCompact>(n, i).surface_area(), t);
       triangles += t;
     }
-    if (triangles <= flatten_limit_)
-      cost = std::min(cost, area * static_cast<float>((triangles + 3) / 4));
+    if (triangles <= flatten_limit_) cost = std::min(cost, area * packs_cost(triangles));
     return cost;
   }
 
@@ -127,7 +132,7 @@ class Collapser {
       tree += best_cost(n.child[i], child_box<N, kCompact>(n, i).surface_area(), t);
       triangles += t;
     }
-    return area * static_cast<float>((triangles + 3) / 4) <= tree;
+    return area * packs_cost(triangles) <= tree;
   }
 
   void collect_leaves(NodeRef ref, Slot& s) const {
@@ -153,9 +158,7 @@ class Collapser {
   // Expected cost of a leaf by the surface area heuristic: the rays that enter its box pay a
   // visit and one test per pack of 4, so a pack of 1 triangle costs what a pack of 4 does (the
   // build's SAH counted triangles one by one and made leaves of 1-2 triangles).
-  static float leaf_cost(float area, int triangles) {
-    return area * static_cast<float>(1 + (triangles + 3) / 4);
-  }
+  float leaf_cost(float area, int triangles) const { return area * (1.0f + packs_cost(triangles)); }
 
   // Merges the wide node's leaf children pairwise while a merge lowers their summed leaf cost,
   // the best merge first, up to merge_limit_ triangles a leaf. Returns whether any was merged.
@@ -280,30 +283,31 @@ class Collapser {
   char* base_ = nullptr;
   size_t used_ = 0, capacity_ = 0;
   int merge_limit_ = 0;
-  int flatten_limit_ = 0;  // inner nodes with at most this many triangles may become leaves
+  int flatten_limit_ = 0;   // inner nodes with at most this many triangles may become leaves
+  float pack_cost_ = 1.0f;  // a pack test's cost over a node visit's
   char* leaf_base_ = nullptr;
   size_t leaf_used_ = 0, leaf_capacity_ = 0;
 };
 
 template <bool kCompact>
-void collapse(Tree& tree, size_t max_inner_nodes, int merge_limit) {
+void collapse(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost) {
   if (tree.shape().width == 2)
-    Collapser<2, kCompact>::run(tree, max_inner_nodes, merge_limit);
+    Collapser<2, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost);
   else
-    Collapser<4, kCompact>::run(tree, max_inner_nodes, merge_limit);
+    Collapser<4, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost);
 }
 
 }  // namespace
 
-void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to) {
+void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to, float pack_cost) {
   const NodeRef root = tree.root();
   if (tree.shape().width >= kWide || root == kEmptyRef || is_leaf(root) || tree.relaid_out() ||
       tree.collapsed())
     return;
   if (tree.shape().compact)
-    collapse<true>(tree, max_inner_nodes, merge_leaves_up_to);
+    collapse<true>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost);
   else
-    collapse<false>(tree, max_inner_nodes, merge_leaves_up_to);
+    collapse<false>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost);
 }
 
 }  // namespace tuneray::bvh

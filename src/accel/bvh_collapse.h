@@ -22,12 +22,16 @@ namespace tuneray::bvh {
 // With `merge_leaves_up_to` > 1 (fast layout only), leaves are priced as our leaves test them, in
 // packs of 4 (the build's SAH priced them triangle by triangle and, with Embree's default blocks
 // of one, made leaves of 1-2 triangles under deep subtrees): a source inner node with at most that
-// many triangles becomes one leaf where the SAH with a node visit costing 1 and a leaf one per
-// pack says it is no dearer than its best subtree (Embree's SAH with blocks of 4, as its BVH8
-// builds for its own packs), and leaf children of a wide node merge pairwise while that lowers
-// their summed cost. Such leaves are written into a buffer of the tree's own, the others stay.
-// Every triangle keeps its references, so rays find the same hits. (stanford-bunny, Embree's
-// defaults: 29,423 wide nodes and 82,428 leaves of 1.75 triangles become 7,914 and 28,409 of 5.07.)
-void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to = 0);
+// many triangles becomes one leaf where the SAH with a node visit costing 1 and a leaf
+// `pack_cost` per pack says it is no dearer than its best subtree (at 1, Embree's SAH with blocks
+// of 4, as its BVH8 builds for its own packs), and leaf children of a wide node merge pairwise
+// while that lowers their summed cost. The tuned BVH passes its configuration's
+// int_cost / trav_cost, so the two costs the tuner sets for the build steer the leaves too: on
+// Embree's 34-triangle Cornell box 1:1 made one node of three leaves of 11-12 triangles. Such
+// leaves are written into a buffer of the tree's own, the others stay. Every triangle keeps its
+// references, so rays find the same hits. (stanford-bunny, Embree's defaults: 29,423 wide nodes and
+// 82,428 leaves of 1.75 triangles become 7,914 and 28,409 of 5.07.)
+void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to = 0,
+                      float pack_cost = 1.0f);
 
 }  // namespace tuneray::bvh

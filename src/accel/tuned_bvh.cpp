@@ -27,8 +27,11 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   bvh::BuildResult result;
   try {
     result = bvh::build_tree(geometry, config_, *device_, primitives_, *next);
-    // Leaves merge up to the configuration's largest leaf, so max_leaf keeps its meaning.
-    if (config_.collapses()) bvh::collapse_to_wide(*next, result.inner_nodes, config_.max_leaf);
+    // Leaves merge up to the configuration's largest leaf, so max_leaf keeps its meaning, and
+    // are priced with its costs.
+    if (config_.collapses())
+      bvh::collapse_to_wide(*next, result.inner_nodes, config_.max_leaf,
+                            config_.int_cost / config_.trav_cost);
     if (config_.is_static) bvh::relayout_depth_first(*next);
   } catch (...) {
     tree_.reset();

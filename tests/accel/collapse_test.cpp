@@ -170,6 +170,27 @@ TEST_F(Collapse, MergedLeavesKeepEveryReferenceAndStayWithinTheLimit) {
   }
 }
 
+// The pack's price steers the leaves: the dearer a pack test against a node visit, the fewer
+// triangles a merged leaf holds on average, and every price keeps every reference.
+TEST_F(Collapse, DearerPacksMakeSmallerLeaves) {
+  double previous = 1e9;
+  for (float pack_cost : {0.5f, 1.0f, 4.0f, 16.0f}) {
+    SCOPED_TRACE(pack_cost);
+    Built source, merged;
+    build(*mesh_, "branching=2", source);
+    build(*mesh_, "branching=2", merged);
+    bvh::collapse_to_wide(merged.tree, merged.result.inner_nodes, 32, pack_cost);
+    const bvh::TreeStats before = bvh::measure_tree(source.tree, 1.0, 1.0);
+    const bvh::TreeStats after = bvh::measure_tree(merged.tree, 1.0, 1.0);
+    EXPECT_EQ(after.references, before.references);
+    const double per_leaf =
+        static_cast<double>(after.references) / static_cast<double>(after.leaf_count);
+    EXPECT_LE(per_leaf, previous);
+    previous = per_leaf;
+  }
+  EXPECT_LT(previous, 3.0);  // at 16 the build's own small leaves stay almost as they were
+}
+
 TEST_F(Collapse, RaysFindExactlyWhatTheUncollapsedTreeFinds) {
   std::vector<Ray> rays;
   Pcg32 rng(7);
