@@ -39,4 +39,28 @@ Ray Camera::generate_ray(Vec2f film_xy, Vec2f lens) const {
   return ray;
 }
 
+void Camera::generate_rays8(simd::F8 film_x, simd::F8 film_y, simd::F8 lens_u, simd::F8 lens_v,
+                            simd::V8& org, simd::V8& dir) const {
+  using simd::F8;
+  using simd::V8;
+  if (desc_.lens_radius > 0) {
+    // The thin lens, lane by lane.
+    alignas(32) float ox[simd::kLanes], oy[simd::kLanes], oz[simd::kLanes];
+    alignas(32) float dx[simd::kLanes], dy[simd::kLanes], dz[simd::kLanes];
+    for (int i = 0; i < simd::kLanes; ++i) {
+      const Ray r = generate_ray({film_x[i], film_y[i]}, {lens_u[i], lens_v[i]});
+      ox[i] = r.org.x, oy[i] = r.org.y, oz[i] = r.org.z;
+      dx[i] = r.dir.x, dy[i] = r.dir.y, dz[i] = r.dir.z;
+    }
+    org = V8(F8::load(ox), F8::load(oy), F8::load(oz));
+    dir = V8(F8::load(dx), F8::load(dy), F8::load(dz));
+    return;
+  }
+  const F8 sx = (2.0f * film_x / static_cast<float>(width_) - 1.0f) * tan_half_fov_ * aspect_;
+  const F8 sy = (1.0f - 2.0f * film_y / static_cast<float>(height_)) * tan_half_fov_;
+  const V8 d = V8(forward_) + V8(right_) * sx + V8(up_) * sy;
+  org = V8(origin_);
+  dir = d * (1.0f / length(d));
+}
+
 }  // namespace tuneray

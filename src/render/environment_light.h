@@ -38,6 +38,10 @@ class EnvironmentLight {
   explicit EnvironmentLight(const Environment& env, const EnvironmentOptions& options = {});
 
   bool active() const { return active_; }
+  // An active environment of one colour (no map): its radiance is constant() everywhere and its
+  // sampling uniform over the sphere, which the SIMD shading step does eight lanes at a time.
+  bool is_constant() const { return active_ && !map_; }
+  const Color& constant() const { return constant_; }
   Color eval(Vec3f dir) const;
   // The map averaged over 8x8 texel blocks (biased; for rays after the first bounce). Falls back
   // to eval() when the low-resolution map was not requested.

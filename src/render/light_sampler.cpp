@@ -166,7 +166,18 @@ LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F
     ls.pdf = simd::select(lit, pmf * dist2 / (cos_light * area), ls.pdf);
   }
 
-  if (is_env.any()) {
+  if (is_env.any() && environment_.is_constant()) {
+    // sample_uniform_sphere, 8 wide.
+    const F8 z = 1.0f - 2.0f * u0;
+    const F8 r = sqrt(simd::max(F8(0.0f), 1.0f - z * z));
+    F8 sin_phi, cos_phi;
+    simd::sincos_turn(u1, sin_phi, cos_phi);
+    const Color c = environment_.constant();
+    ls.wi = simd::select(is_env, V8(r * cos_phi, r * sin_phi, z), ls.wi);
+    ls.radiance = simd::select(is_env, V8(F8(c.x), F8(c.y), F8(c.z)), ls.radiance);
+    ls.pdf = simd::select(is_env, kUniformSpherePdf * pmf, ls.pdf);
+    ls.distance = simd::select(is_env, F8(kInf), ls.distance);
+  } else if (is_env.any()) {
     alignas(32) float ua[simd::kLanes], ub[simd::kLanes], pm[simd::kLanes];
     u0.store(ua);
     u1.store(ub);

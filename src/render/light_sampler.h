@@ -46,6 +46,10 @@ class LightSampler {
   // when a BSDF-sampled ray hits an emitter).
   float pdf_triangle(uint32_t prim, Vec3f p, Vec3f light_point, Vec3f light_normal) const;
   float pdf_environment(Vec3f dir) const;
+  // The probability of choosing the environment (0 without one).
+  float environment_pmf() const {
+    return env_index_ == SIZE_MAX ? 0.0f : selection_.pmf(env_index_);
+  }
   // Radiance leaving an emissive triangle towards `wo` (respects one-sided emission).
   Color emitted(uint32_t prim, Vec3f geometric_normal, Vec3f wo) const;
 

@@ -83,6 +83,9 @@ class PathIntegrator {
   // The per-lane parts of shade8: a path whose ray left the scene (it ends), and the emission of
   // an emitter the ray hit, weighted against light sampling.
   void shade_miss(PathWave& wave, size_t i) const;
+  // shade_miss for the lanes of positions [begin, begin + 8) in `missed`, when the environment
+  // is constant (or absent).
+  void shade_misses(PathWave& wave, size_t begin, simd::M8 missed) const;
   void add_emission(PathWave& wave, size_t i, const Hit& hit) const;
 
   // The materials as planes for shade8's gathers (index: material id).

@@ -93,6 +93,38 @@ F8 power_heuristic(F8 a, F8 b) {
 
 }  // namespace
 
+void PathIntegrator::shade_misses(PathWave& w, size_t begin, M8 missed) const {
+  // shade_miss for a constant environment, 8 wide: its radiance is one colour, its pdf uniform.
+  const simd::I8 flags = simd::I8::load(w.flags.data() + begin);
+  auto flag = [&flags](int32_t bit) {
+    return M8(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
+        _mm256_and_si256(flags.v, _mm256_set1_epi32(bit)), _mm256_set1_epi32(bit))));
+  };
+  const M8 previous_delta = flag(PathWave::kPreviousWasDelta);
+  const M8 specular_chain = flag(PathWave::kSpecularChain);
+  F8 weight(1.0f);
+  if (settings_.strategy == LightStrategy::kLightOnly) {
+    weight = simd::keep(previous_delta, weight);
+  } else if (settings_.strategy == LightStrategy::kMis) {
+    const F8 previous_pdf = F8::load(w.plane(PathWave::kPrevPdf) + begin);
+    const F8 env_pdf(lights_.environment_pmf() * kUniformSpherePdf);
+    weight = simd::select(previous_delta, weight, power_heuristic(previous_pdf, env_pdf));
+  }
+  const Color c = environment_.constant();
+  const V8 beta(F8::load(w.plane(PathWave::kBetaX) + begin),
+                F8::load(w.plane(PathWave::kBetaY) + begin),
+                F8::load(w.plane(PathWave::kBetaZ) + begin));
+  const V8 seen = beta * V8(F8(c.x), F8(c.y), F8(c.z)) * weight;
+  const M8 to_camera = missed & specular_chain, to_rest = missed.and_not(specular_chain);
+  for (int k = 0; k < 3; ++k) {
+    const F8 v = k == 0 ? seen.x : (k == 1 ? seen.y : seen.z);
+    float* camera = w.plane(PathWave::kCameraX + k) + begin;
+    float* rest = w.plane(PathWave::kLX + k) + begin;
+    (F8::load(camera) + simd::keep(to_camera, v)).store(camera);
+    (F8::load(rest) + simd::keep(to_rest, v)).store(rest);
+  }
+}
+
 uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit* hits,
                                 const float* const* u, ShadowRequest* shadow) const {
   const bool use_nee = settings_.strategy != LightStrategy::kBsdfOnly;
@@ -111,13 +143,14 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   LaneVecs p0, p1, p2, n0, n1, n2, ng, flat_normal, flat_tangent;
   LaneFloats bu, bv;
   alignas(32) int32_t material_of[kLanes] = {};
-  uint32_t flat = 0, textured = 0;
+  uint32_t flat = 0, textured = 0, missed = 0;
   for (int i = 0; i < count; ++i) {
     const size_t k = begin + static_cast<size_t>(i);
     shadow[i].active = false;
     const Hit& hit = hits[i];
     if (!hit.valid()) {
-      shade_miss(w, k);
+      missed |= 1u << i;
+      if (environment_.active() && !environment_.is_constant()) shade_miss(w, k);
       continue;
     }
     const TriangleShading& ts = geometry_.triangle(hit.prim);
@@ -144,6 +177,7 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
     }
     if (mp.textured[ts.material]) textured |= 1u << i;
   }
+  if (missed && environment_.is_constant()) shade_misses(w, begin, M8::from_bits(missed));
   if (!scatter) return 0;
 
   // --- The hit point and its frames (ShadingGeometry::interaction), 8 wide.

@@ -82,6 +82,28 @@ struct PathWave {
     slot[i] = s;
   }
 
+  // Paths [begin, begin + 8) start on camera rays (org, dir), as slots begin, begin + 1, ...
+  void start8(size_t begin, const simd::V8& org, const simd::V8& dir) {
+    const simd::V8 parts[] = {org, dir};
+    for (int k = 0; k < 2; ++k) {
+      parts[k].x.store(plane(kOrgX + 3 * k) + begin);
+      parts[k].y.store(plane(kOrgY + 3 * k) + begin);
+      parts[k].z.store(plane(kOrgZ + 3 * k) + begin);
+    }
+    for (int k = kLX; k <= kCameraZ; ++k) simd::F8(0.0f).store(plane(k) + begin);
+    for (int k = kBetaX; k <= kBetaZ; ++k) simd::F8(1.0f).store(plane(k) + begin);
+    org.x.store(plane(kPrevX) + begin);
+    org.y.store(plane(kPrevY) + begin);
+    org.z.store(plane(kPrevZ) + begin);
+    simd::F8(0.0f).store(plane(kPrevPdf) + begin);
+    simd::F8(0.0f).store(plane(kMaxRoughness) + begin);
+    simd::I8(0).store(depth.data() + begin);
+    simd::I8(kPreviousWasDelta | kSpecularChain).store(flags.data() + begin);
+    const simd::I8 index(_mm256_add_epi32(_mm256_set1_epi32(static_cast<int32_t>(begin)),
+                                          _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+    index.store(reinterpret_cast<int32_t*>(slot.data() + begin));
+  }
+
   Ray ray(size_t i) const {
     Ray r;
     r.org = {plane(kOrgX)[i], plane(kOrgY)[i], plane(kOrgZ)[i]};

@@ -47,9 +47,9 @@ struct PixelSampleId {
 class SamplerBank {
  public:
   virtual ~SamplerBank() = default;
-  // Starts slots [first, first + ids.size()) at their pixel samples and writes each one's first
-  // four numbers to first4[4 * i .. 4 * i + 3] (the camera sample).
-  virtual void start(size_t first, std::span<const PixelSampleId> ids, float* first4) = 0;
+  // Starts slots [first, first + ids.size()) at their pixel samples; number j of slot
+  // first + i's first four (the camera sample) goes to first4[j][i].
+  virtual void start(size_t first, std::span<const PixelSampleId> ids, float* const* first4) = 0;
   // For each listed slot slots[k], its next `quads` quadruples: number j of quadruple q goes to
   // planes[4 * q + j][positions[k]].
   virtual void next4(std::span<const uint32_t> slots, std::span<const uint32_t> positions,
@@ -61,13 +61,13 @@ template <class S>
 class SamplerBankOf final : public SamplerBank {
  public:
   explicit SamplerBankOf(const S& prototype) : prototype_(prototype) {}
-  void start(size_t first, std::span<const PixelSampleId> ids, float* first4) override {
+  void start(size_t first, std::span<const PixelSampleId> ids, float* const* first4) override {
     if (samplers_.size() < first + ids.size()) samplers_.resize(first + ids.size(), prototype_);
     for (size_t i = 0; i < ids.size(); ++i) {
       S& s = samplers_[first + i];
       s.start_pixel_sample(ids[i].x, ids[i].y, ids[i].index);
       const std::array<float, 4> u = s.S::next4();
-      for (int j = 0; j < 4; ++j) first4[4 * i + j] = u[j];
+      for (int j = 0; j < 4; ++j) first4[j][i] = u[j];
     }
   }
   void next4(std::span<const uint32_t> slots, std::span<const uint32_t> positions, int quads,

@@ -183,6 +183,34 @@ inline I8 select(M8 m, I8 a, I8 b) {
       _mm256_blendv_ps(_mm256_castsi256_ps(b.v), _mm256_castsi256_ps(a.v), m.v)));
 }
 
+// sin and cos of 2 pi u for u in [0, 1): reduced to [-pi/4, pi/4] around the nearest quarter
+// turn, where the series of sampling.h (sin_quarter, cos_quarter) hold to float precision.
+inline void sincos_turn(F8 u, F8& s, F8& c) {
+  const F8 t = u * 4.0f;
+  const F8 k = F8(_mm256_round_ps(t.v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+  const F8 r = (t - k) * (kPi / 2);
+  const F8 r2 = r * r;
+  const F8 sr = r * (1.0f - r2 * (1.0f / 6) *
+                                (1.0f - r2 * (1.0f / 20) *
+                                            (1.0f - r2 * (1.0f / 42) * (1.0f - r2 * (1.0f / 72)))));
+  const F8 cr =
+      1.0f - r2 * 0.5f *
+                 (1.0f - r2 * (1.0f / 12) *
+                             (1.0f - r2 * (1.0f / 30) *
+                                         (1.0f - r2 * (1.0f / 56) * (1.0f - r2 * (1.0f / 90)))));
+  const __m256i q = _mm256_and_si256(_mm256_cvtps_epi32(k.v), _mm256_set1_epi32(3));
+  const M8 odd(_mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_and_si256(q, _mm256_set1_epi32(1)), _mm256_set1_epi32(1))));
+  const M8 sin_negative(_mm256_castsi256_ps(_mm256_cmpgt_epi32(q, _mm256_set1_epi32(1))));
+  const M8 cos_negative(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
+      _mm256_and_si256(_mm256_add_epi32(q, _mm256_set1_epi32(1)), _mm256_set1_epi32(2)),
+      _mm256_set1_epi32(2))));
+  s = select(odd, cr, sr);
+  c = select(odd, sr, cr);
+  s = select(sin_negative, -s, s);
+  c = select(cos_negative, -c, c);
+}
+
 // Loads lane i from `values[i]` (eight scalars gathered by the caller's loop).
 inline F8 from_lanes(const float (&values)[kLanes]) {
   return F8::load(values);

@@ -46,9 +46,9 @@ PassStats combine(tbb::combinable<PathCounters>& counters, double render_ms, uin
 // allocates and page-faults nothing once the buffers have grown to a chunk.
 struct TileRenderer::WaveBuffers {
   std::unique_ptr<SamplerBank> samplers;
-  std::vector<PixelSampleId> ids;  // per slot
-  std::vector<float> clamp;        // per slot: its pixel's firefly clamp
-  std::vector<float> camera_u;     // 4 per slot
+  std::vector<PixelSampleId> ids;              // per slot
+  std::vector<float> clamp;                    // per slot: its pixel's firefly clamp
+  std::array<std::vector<float>, 4> camera_u;  // the camera's numbers, as planes over slots
   PathWave wave;
   std::array<std::vector<float>, kShadeSamples> u;  // planes over wave positions
   std::vector<uint32_t> sampled, sampled_at;        // slots drawing numbers, their positions
@@ -130,24 +130,34 @@ PassStats TileRenderer::run(Film& film, const PixelWork& work,
 
 void TileRenderer::start_paths(WaveBuffers& b, const ClampThresholds& clamp) const {
   const size_t paths = b.ids.size();
+  const size_t padded = (paths + 7) / 8 * 8;
   if (!b.samplers) b.samplers = prototype_.make_bank();
-  b.camera_u.resize(4 * paths);
-  b.samplers->start(0, b.ids, b.camera_u.data());
+  float* camera_u[4];
+  for (int j = 0; j < 4; ++j) {
+    b.camera_u[j].resize(padded);
+    camera_u[j] = b.camera_u[j].data();
+  }
+  b.samplers->start(0, b.ids, camera_u);
   b.wave.reserve(paths);
   b.wave.size = paths;
   b.clamp.resize(paths);
   b.result.resize(paths);
   const int width = settings_.width;
-  for (size_t k = 0; k < paths; ++k) {
-    const float* u = &b.camera_u[4 * k];
-    const PixelSampleId& id = b.ids[k];
-    b.wave.start(
-        k,
-        camera_.generate_ray({static_cast<float>(id.x) + u[0], static_cast<float>(id.y) + u[1]},
-                             {u[2], u[3]}),
-        static_cast<uint32_t>(k));
-    b.clamp[k] = clamp.at(static_cast<size_t>(id.y) * width + id.x);
+  for (size_t k0 = 0; k0 < paths; k0 += 8) {
+    alignas(32) float x[8] = {}, y[8] = {};
+    for (size_t k = k0; k < std::min(paths, k0 + 8); ++k) {
+      x[k - k0] = static_cast<float>(b.ids[k].x);
+      y[k - k0] = static_cast<float>(b.ids[k].y);
+    }
+    simd::V8 org, dir;
+    camera_.generate_rays8(simd::F8::load(x) + simd::F8::load(camera_u[0] + k0),
+                           simd::F8::load(y) + simd::F8::load(camera_u[1] + k0),
+                           simd::F8::load(camera_u[2] + k0), simd::F8::load(camera_u[3] + k0), org,
+                           dir);
+    b.wave.start8(k0, org, dir);
   }
+  for (size_t k = 0; k < paths; ++k)
+    b.clamp[k] = clamp.at(static_cast<size_t>(b.ids[k].y) * width + b.ids[k].x);
 }
 
 void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local) const {

@@ -8,6 +8,7 @@
 #include "math/rng.h"
 #include "render/bsdf.h"
 #include "render/bsdf8.h"
+#include "render/camera.h"
 #include "render/environment_light.h"
 #include "render/light_sampler.h"
 #include "render/sampling.h"
@@ -169,6 +170,32 @@ TEST(Bsdf8, CosineHemisphereIsTheScalarWarp) {
     const V8 w = simd::sample_cosine_hemisphere(F8::load(u0), F8::load(u1));
     for (int i = 0; i < kLanes; ++i)
       EXPECT_LT(length(w.lane(i) - sample_cosine_hemisphere({u0[i], u1[i]})), 1e-6f);
+  }
+}
+
+TEST(Camera8, EveryLaneIsTheScalarCameraRay) {
+  for (float lens_radius : {0.0f, 0.3f}) {
+    CameraDesc desc;
+    desc.position = {1, 2, 3};
+    desc.target = {-2, 0.5f, -4};
+    desc.vfov_deg = 50;
+    desc.lens_radius = lens_radius;
+    const Camera camera(desc, 320, 180);
+    Pcg32 rng(8, 1);
+    for (int trial = 0; trial < 200; ++trial) {
+      alignas(32) float x[kLanes], y[kLanes], lu[kLanes], lv[kLanes];
+      for (int i = 0; i < kLanes; ++i) {
+        x[i] = 320 * rng.next_float(), y[i] = 180 * rng.next_float();
+        lu[i] = rng.next_float(), lv[i] = rng.next_float();
+      }
+      V8 org, dir;
+      camera.generate_rays8(F8::load(x), F8::load(y), F8::load(lu), F8::load(lv), org, dir);
+      for (int i = 0; i < kLanes; ++i) {
+        const Ray r = camera.generate_ray({x[i], y[i]}, {lu[i], lv[i]});
+        EXPECT_LT(length(org.lane(i) - r.org), 1e-5f);
+        EXPECT_LT(length(dir.lane(i) - r.dir), 1e-6f);
+      }
+    }
   }
 }
 
