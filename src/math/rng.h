@@ -1,6 +1,8 @@
 // PCG32 (O'Neill 2014): small state, good statistical quality, fast. Used by samplers and tools.
 #pragma once
 
+#include <immintrin.h>
+
 #include <cstdint>
 
 namespace tuneray {
@@ -20,7 +22,7 @@ class Pcg32 {
 
   uint32_t next_u32() {
     uint64_t old = state_;
-    state_ = old * 6364136223846793005ULL + inc_;
+    state_ = old * kMultiplier + inc_;
     uint32_t xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
     uint32_t rot = static_cast<uint32_t>(old >> 59u);
     return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
@@ -29,8 +31,61 @@ class Pcg32 {
   // Uniform in [0, 1): 24 random mantissa bits, so 1.0f is never returned.
   float next_float() { return static_cast<float>(next_u32() >> 8) * 0x1p-24f; }
 
+  // The generator's state, for stepping several generators side by side (Pcg32x4).
+  uint64_t state() const { return state_; }
+  uint64_t increment() const { return inc_; }
+  void set_state(uint64_t state) { state_ = state; }
+
+  static constexpr uint64_t kMultiplier = 6364136223846793005ULL;
+
  private:
   uint64_t state_ = 0, inc_ = 1;
+};
+
+// Four Pcg32 generators stepped in AVX2 lanes: next_floats() gives what next_float() of each
+// would give, bit for bit (AVX2 has no 64-bit multiply; the product is assembled from three
+// 32-bit ones, exact mod 2^64).
+class Pcg32x4 {
+ public:
+  Pcg32x4(const Pcg32* const g[4])
+      : state_(_mm256_setr_epi64x(
+            static_cast<long long>(g[0]->state()), static_cast<long long>(g[1]->state()),
+            static_cast<long long>(g[2]->state()), static_cast<long long>(g[3]->state()))),
+        inc_(_mm256_setr_epi64x(
+            static_cast<long long>(g[0]->increment()), static_cast<long long>(g[1]->increment()),
+            static_cast<long long>(g[2]->increment()), static_cast<long long>(g[3]->increment()))) {
+  }
+
+  // The next number of each generator, lane i of the result from generator i.
+  __m128 next_floats() {
+    const __m256i old = state_;
+    const __m256i m_lo =
+        _mm256_set1_epi64x(static_cast<long long>(Pcg32::kMultiplier & 0xffffffffu));
+    const __m256i m_hi = _mm256_set1_epi64x(static_cast<long long>(Pcg32::kMultiplier >> 32));
+    const __m256i low = _mm256_mul_epu32(old, m_lo);
+    const __m256i cross = _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(old, 32), m_lo),
+                                           _mm256_mul_epu32(old, m_hi));
+    state_ = _mm256_add_epi64(_mm256_add_epi64(low, _mm256_slli_epi64(cross, 32)), inc_);
+    // The output permutation on each lane's low 32 bits: xorshift, then a rotation by old >> 59.
+    const __m256i x = _mm256_srli_epi64(_mm256_xor_si256(_mm256_srli_epi64(old, 18), old), 27);
+    const __m256i rot = _mm256_srli_epi64(old, 59);
+    const __m256i left =
+        _mm256_and_si256(_mm256_sub_epi32(_mm256_setzero_si256(), rot), _mm256_set1_epi32(31));
+    const __m256i out = _mm256_or_si256(_mm256_srlv_epi32(x, rot), _mm256_sllv_epi32(x, left));
+    const __m128i packed = _mm256_castsi256_si128(
+        _mm256_permutevar8x32_epi32(out, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6)));
+    return _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(packed, 8)), _mm_set1_ps(0x1p-24f));
+  }
+
+  // Writes the states back into the generators they came from.
+  void store(Pcg32* const g[4]) const {
+    alignas(32) uint64_t s[4];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(s), state_);
+    for (int i = 0; i < 4; ++i) g[i]->set_state(s[i]);
+  }
+
+ private:
+  __m256i state_, inc_;
 };
 
 // Mixes integers into a well-distributed 64-bit seed (SplitMix64 finaliser).

@@ -7,6 +7,8 @@
 // sample indices >= 256, where the tables end: those samples are white noise, still unbiased.
 #pragma once
 
+#include <immintrin.h>
+
 #include "render/blue_noise.h"
 #include "render/render_settings.h"
 #include "render/sampler.h"
@@ -19,12 +21,34 @@ class BlueNoiseSampler final : public Sampler {
                             const BlueNoiseTables& tables = BlueNoiseTables::optimized());
   void start_pixel_sample(uint32_t x, uint32_t y, uint32_t index) override;
   float next1() override;
-  std::array<float, 4> next4() override;
+  // Inline: the wavefront's sampler bank calls it for every path at every bounce.
+  std::array<float, 4> next4() override {
+    // Beyond the tables (from the second bounce's BSDF sample on, and every sample from the
+    // 257th) the numbers are the fallback's: drawn from it directly, they are what four next1()
+    // calls would return after four virtual calls and tests.
+    if (!in_table_ || dim_ >= blue_noise::kDims) return fallback_.next4();
+    if (dim_ % 4 != 0 || dim_ + 4 > blue_noise::kDims) return Sampler::next4();
+    const int q = dim_ / 4;
+    dim_ += 4;
+    // One aligned 16-byte load for the quadruple's base values and one for its scrambling keys.
+    const uint32_t* row = tables_->base(index_ ^ keys_->rank.k[q]) + 4 * q;
+    __m128i bits =
+        _mm_xor_si128(_mm_load_si128(reinterpret_cast<const __m128i*>(row)),
+                      _mm_load_si128(reinterpret_cast<const __m128i*>(keys_->scramble[q].k)));
+    __m128 u = _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(bits, 8)), _mm_set1_ps(0x1p-24f));
+    std::array<float, 4> out;
+    _mm_storeu_ps(out.data(), u);
+    return out;
+  }
   std::unique_ptr<Sampler> clone() const override {
     return std::make_unique<BlueNoiseSampler>(*this);
   }
   std::unique_ptr<SamplerBank> make_bank() const override {
     return std::make_unique<SamplerBankOf<BlueNoiseSampler>>(*this);
+  }
+  // Past its tables every further number comes from the PCG fallback; before, none does.
+  Pcg32* generator_for_next_draws() {
+    return !in_table_ || dim_ >= blue_noise::kDims ? fallback_.generator_for_next_draws() : nullptr;
   }
 
  private:

@@ -72,16 +72,41 @@ class SamplerBankOf final : public SamplerBank {
   }
   void next4(std::span<const uint32_t> slots, std::span<const uint32_t> positions, int quads,
              float* const* planes) override {
-    for (size_t k = 0; k < slots.size(); ++k) {
-      S& s = samplers_[slots[k]];
-      for (int q = 0; q < quads; ++q) {
-        const std::array<float, 4> u = s.S::next4();
-        for (int j = 0; j < 4; ++j) planes[4 * q + j][positions[k]] = u[j];
+    size_t k = 0;
+    // Four slots at a time whose numbers all come from their PCG generators (every PcgSampler;
+    // a blue-noise sampler past its tables) step those generators in AVX2 lanes.
+    for (; k + 4 <= slots.size(); k += 4) {
+      Pcg32* g[4];
+      bool lanes = true;
+      for (int j = 0; j < 4; ++j) {
+        g[j] = samplers_[slots[k + j]].generator_for_next_draws();
+        lanes = lanes && g[j];
       }
+      if (!lanes) {
+        for (int j = 0; j < 4; ++j) draw(k + j, slots, positions, quads, planes);
+        continue;
+      }
+      Pcg32x4 x(g);
+      for (int n = 0; n < 4 * quads; ++n) {
+        alignas(16) float u[4];
+        _mm_store_ps(u, x.next_floats());
+        for (int j = 0; j < 4; ++j) planes[n][positions[k + j]] = u[j];
+      }
+      x.store(g);
     }
+    for (; k < slots.size(); ++k) draw(k, slots, positions, quads, planes);
   }
 
  private:
+  void draw(size_t k, std::span<const uint32_t> slots, std::span<const uint32_t> positions,
+            int quads, float* const* planes) {
+    S& s = samplers_[slots[k]];
+    for (int q = 0; q < quads; ++q) {
+      const std::array<float, 4> u = s.S::next4();
+      for (int j = 0; j < 4; ++j) planes[4 * q + j][positions[k]] = u[j];
+    }
+  }
+
   S prototype_;
   std::vector<S> samplers_;
 };
@@ -106,6 +131,8 @@ class PcgSampler final : public Sampler {
   std::unique_ptr<SamplerBank> make_bank() const override {
     return std::make_unique<SamplerBankOf<PcgSampler>>(*this);
   }
+  // The generator every further number comes from (SamplerBankOf steps four side by side).
+  Pcg32* generator_for_next_draws() { return &rng_; }
 
  private:
   uint64_t seed_;

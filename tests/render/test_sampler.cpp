@@ -3,6 +3,7 @@
 #include <array>
 #include <vector>
 
+#include "render/blue_noise_sampler.h"
 #include "render/sampler.h"
 #include "test_bsdf_chi2.h"
 
@@ -86,6 +87,66 @@ TEST(PcgSampler, Next2AndNext4FollowNext1) {
             std::vector<float>(ref.begin(), ref.begin() + 4));
   EXPECT_EQ(two.x, ref[4]);
   EXPECT_EQ(two.y, ref[5]);
+}
+
+TEST(Pcg32x4, EachLaneIsItsScalarGenerator) {
+  Pcg32 scalar[4] = {Pcg32(1, 2), Pcg32(3, 4), Pcg32(0xfffffffffffULL, 7), Pcg32(9, 0)};
+  Pcg32 copies[4] = {scalar[0], scalar[1], scalar[2], scalar[3]};
+  Pcg32* lanes[4] = {&copies[0], &copies[1], &copies[2], &copies[3]};
+  Pcg32x4 x(lanes);
+  for (int n = 0; n < 1000; ++n) {
+    alignas(16) float u[4];
+    _mm_store_ps(u, x.next_floats());
+    for (int i = 0; i < 4; ++i) ASSERT_EQ(u[i], scalar[i].next_float()) << n << " " << i;
+  }
+  x.store(lanes);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(copies[i].next_u32(), scalar[i].next_u32());
+}
+
+// A bank's slot draws what a lone sampler started at the same pixel sample draws, whichever way
+// the bank steps it (four generators side by side, or one by one; blue noise in and past its
+// tables, and past its samples).
+template <class S>
+void expect_bank_is_lone_samplers(const S& prototype) {
+  std::unique_ptr<SamplerBank> bank = prototype.make_bank();
+  std::vector<PixelSampleId> ids;
+  for (uint32_t k = 0; k < 11; ++k) ids.push_back({k % 5, k / 5, k * 37 % 300});
+  std::vector<float> first(4 * ids.size());
+  float* first4[4];
+  for (int j = 0; j < 4; ++j) first4[j] = first.data() + j * ids.size();
+  bank->start(0, ids, first4);
+  std::vector<S> lone(ids.size(), prototype);
+  for (size_t k = 0; k < ids.size(); ++k) {
+    lone[k].start_pixel_sample(ids[k].x, ids[k].y, ids[k].index);
+    const std::array<float, 4> u = lone[k].next4();
+    for (int j = 0; j < 4; ++j) ASSERT_EQ(first4[j][k], u[j]);
+  }
+  std::vector<float> out(8 * ids.size());
+  float* planes[8];
+  for (int j = 0; j < 8; ++j) planes[j] = out.data() + j * ids.size();
+  for (int round = 0; round < 5; ++round) {
+    // Every slot but the fourth, at shuffled positions.
+    std::vector<uint32_t> slots, positions;
+    for (uint32_t k = 0; k < ids.size(); ++k) {
+      if (k == 3) continue;
+      slots.push_back(k);
+      positions.push_back(static_cast<uint32_t>(ids.size() - 1 - k));
+    }
+    bank->next4(slots, positions, 2, planes);
+    for (size_t i = 0; i < slots.size(); ++i) {
+      S& s = lone[slots[i]];
+      const std::array<float, 4> a = s.next4(), b = s.next4();
+      for (int j = 0; j < 4; ++j) {
+        ASSERT_EQ(planes[j][positions[i]], a[j]) << round << " " << slots[i];
+        ASSERT_EQ(planes[4 + j][positions[i]], b[j]) << round << " " << slots[i];
+      }
+    }
+  }
+}
+
+TEST(SamplerBank, SlotsDrawWhatLoneSamplersDraw) {
+  expect_bank_is_lone_samplers(PcgSampler(42));
+  expect_bank_is_lone_samplers(BlueNoiseSampler(7));
 }
 
 }  // namespace
