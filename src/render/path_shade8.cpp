@@ -1,8 +1,9 @@
 // PathIntegrator::shade8: the shading step of up to eight paths at once. The math that every
-// bounce does (hit point and frames, BSDF evaluation and sampling, MIS, Russian roulette, the
-// next ray) runs in AVX2 lanes; what is rare or table-driven (misses and the environment,
-// emitters, textures, light selection, the dielectric) runs per lane with the scalar code.
-// Every step is lane by lane, so a path's result does not depend on its neighbours.
+// bounce does (hit point and frames, the material and its regularization, light sampling, BSDF
+// evaluation and sampling, MIS, Russian roulette, the next ray, misses under a constant
+// environment) runs in AVX2 lanes; what is rare or table-driven (misses under an environment map,
+// emitters hit, texture lookups, the dielectric) runs per lane with the scalar code. Every step
+// is lane by lane, so a path's result does not depend on its neighbours.
 #include <algorithm>
 #include <cmath>
 

@@ -210,13 +210,13 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
     constexpr size_t kFar = 16, kNear = 8;
     for (size_t i = 0; i < std::min(n, kFar); ++i) integrator_.prefetch_hit(b.hits[i], 0);
     for (size_t i = 0; i < std::min(n, kNear); ++i) integrator_.prefetch_hit(b.hits[i], 1);
+    ShadowRequest shadow[8];  // shade8 sets every lane's `active`, the rest where it is set
     for (size_t i0 = 0; i0 < n; i0 += 8) {
       const int count = static_cast<int>(std::min<size_t>(8, n - i0));
       for (size_t i = i0 + kFar; i < std::min(n, i0 + kFar + 8); ++i)
         integrator_.prefetch_hit(b.hits[i], 0);
       for (size_t i = i0 + kNear; i < std::min(n, i0 + kNear + 8); ++i)
         integrator_.prefetch_hit(b.hits[i], 1);
-      ShadowRequest shadow[8];
       b.alive[i0 / 8] =
           static_cast<uint8_t>(integrator_.shade8(wave, i0, count, &b.hits[i0], u, shadow));
       for (int k = 0; k < count; ++k) {
