@@ -1,9 +1,10 @@
-// Progressive rendering with two schedulers around the one PathIntegrator:
-// - tiles: square tiles that TBB spreads over all cores, each path traced start to end;
-// - wavefront (quality.wavefront): runs of whole pixels whose paths advance together in waves
-//   (generate -> extend -> shade -> connect), rays traced in batches through the accelerator's
-//   batch entry points, shadow rays collected and traced together, the queue of live paths
-//   compacted after every bounce.
+// Progressive rendering with two schedulers around the one PathIntegrator. Both advance a wave of
+// paths (PathWave) bounce by bounce (generate -> extend -> shade -> connect), shade eight paths
+// at a time and pack the live paths to the front after every bounce:
+// - tiles: square tiles that TBB spreads over all cores, a tile's samples one wave, its rays
+//   traced one at a time through the accelerator's single-ray calls;
+// - wavefront (quality.wavefront): runs of whole pixels as waves, rays traced in batches through
+//   the accelerator's batch entry points, shadow rays collected and traced together.
 // Both consume each pixel's samples in the same order, so they give the same image.
 #pragma once
 
