@@ -150,6 +150,7 @@ CommandAction add_bench_command(CLI::App& app) {
       ->capture_default_str();
   p->add_option("--accel", peers->accel, "Our acceleration structure backend")
       ->capture_default_str();
+  p->add_option("--bvh", peers->bvh, "Backend parameters key=value,... (see docs/bvh.md)");
   p->add_option("--truth-dir", peers->truth_dir, "Cache of both references")->capture_default_str();
   p->add_option("--pathtracer", peers->peer.binary, "Embree's pathtracer")->capture_default_str();
   p->add_option("--ecs", peers->peer.scene, "Embree's scene (.ecs, its .obj beside it)")

@@ -16,8 +16,8 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
   fmt::print("  {:>6} {:>10} {:>9}\n", "spp", "frame ms", "RMSE");
   for (const PeerPoint& p : r.embree)
     fmt::print("  {:>6} {:>10.1f} {:>9.5f}\n", p.spp, p.frame_ms, p.rmse);
-  fmt::print("tuneray ({} accel, default quality switches): {:.2f} ms per spp\n\n", o.accel,
-             r.ours_ms_per_spp);
+  fmt::print("tuneray ({} accel{}{}, default quality switches): {:.2f} ms per spp\n\n", o.accel,
+             o.bvh.empty() ? "" : " ", o.bvh, r.ours_ms_per_spp);
   fmt::print("{:>7} {:>11} {:>11} {:>11} {:>9} {:>11} {:>12}", "time s", "embree RMSE", "tuneray",
              "tuneray 8b", "spp", "ratio raw", "ratio 8-bit");
   if (o.denoise) fmt::print(" {:>14} {:>15}", "denoised raw", "denoised 8-bit");
@@ -44,6 +44,7 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
                       {"repeats", o.repeats},
                       {"frame_ms", o.frame_ms},
                       {"accel", o.accel},
+                      {"bvh", o.bvh},
                       {"denoise_column", o.denoise},
                       {"skipped", r.skipped}};
   if (r.skipped) {

@@ -89,6 +89,7 @@ void check_peers_options(const PeersBenchOptions& o) {
   if (o.reference_spp < 2) fail("--reference-spp must be at least 2");
   if (o.repeats < 1 || o.timing_frames < 1) fail("--repeats must be at least 1");
   if (!(o.frame_ms > 0) || !std::isfinite(o.frame_ms)) fail("--frame-ms must be a positive number");
+  make_accel(o.accel, o.bvh);  // an unknown backend or parameter fails before anything runs
 }
 
 std::string embree_reference_path(const PeersBenchOptions& o) {
@@ -123,7 +124,7 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
   Image embree_truth = read_image(result.embree_reference);
 
   Scene scene = embree_cornell_scene(o.peer);
-  std::unique_ptr<Accel> accel = make_accel(o.accel, "");
+  std::unique_ptr<Accel> accel = make_accel(o.accel, o.bvh);
   accel->build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
                 scene.triangles.size()});
   GroundTruthKey key;

@@ -20,6 +20,7 @@ struct PeersBenchOptions {
   int timing_frames = 2;                // pathtracer frames per --benchmark run
   double frame_ms = 50;                 // our frame budget
   std::string accel = "native";         // our backend (the render command's default)
+  std::string bvh;                      // its parameters, as `render --bvh` takes them
   std::string truth_dir = "out/truth";  // cache of both references
   bool denoise = true;                  // also our runs with the denoiser on
 };

@@ -108,6 +108,16 @@ TEST(PeersBench, RefusesOptionsThatMakeNoSense) {
   EXPECT_THROW(refused([](PeersBenchOptions& o) { o.frame_ms = 0; })(), std::invalid_argument);
   EXPECT_THROW(refused([](PeersBenchOptions& o) { o.peer.width = 0; })(), std::invalid_argument);
   EXPECT_THROW(refused([](PeersBenchOptions& o) { o.reference_spp = 1; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](PeersBenchOptions& o) { o.accel = "octree"; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](PeersBenchOptions& o) {
+                 o.accel = "tuned";
+                 o.bvh = "branching=3";
+               })(),
+               std::invalid_argument);
+  EXPECT_NO_THROW(refused([](PeersBenchOptions& o) {
+    o.accel = "tuned";
+    o.bvh = "int_cost=4";
+  })());
 }
 
 // The nesting correction against a simulation: pixels whose samples are unit Gaussians around
