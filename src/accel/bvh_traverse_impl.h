@@ -77,7 +77,7 @@ inline int box_test2(const float (&rows)[6][2], const TraversalRay& r, float tfa
     float tmin = r.tnear, tmax = kInf;
     for (int a = 0; a < 3; ++a) {
       const float near = rows[r.near_row[a]][i];
-      const float far = rows[(r.near_row[a] + 3) % 6][i];
+      const float far = rows[r.far_row[a]][i];
       float tn, tf;
       if constexpr (kRobust) {
         tn = (near - r.org[a]) * r.inv[a];
@@ -105,9 +105,10 @@ struct NodePlanes {
   using L = LanesOf<N>;
   using V = typename L::V;
   using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
-  static void load(const Node& n, const int* near_row, V (&nears)[3], V (&fars)[3]) {
+  static void load(const Node& n, const int* near_row, const int* far_row, V (&nears)[3],
+                   V (&fars)[3]) {
     for (int a = 0; a < 3; ++a) {
-      const int nr = near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
+      const int nr = near_row[a], fr = far_row[a];
       if constexpr (kCompact) {
         const V scale = L::set1(n.scale[a]), origin = L::set1(n.origin[a]);
         nears[a] = L::decode_u8(n.q[nr], scale, origin);
@@ -125,7 +126,7 @@ struct NodeTest {
   using Planes = NodePlanes<N, kCompact>;
   static int run(const typename Planes::Node& n, const TraversalRay& r, float tfar, float* dist) {
     typename Planes::V nears[3], fars[3];
-    Planes::load(n, r.near_row, nears, fars);
+    Planes::load(n, r.near_row, r.far_row, nears, fars);
     return box_test<typename Planes::L, kRobust>(nears, fars, r, tfar, dist);
   }
 };
@@ -295,9 +296,11 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
         // enters several small sibling leaves of a node at once, and their hits cull the inner
         // children before they are visited.
         mask &= ~leaves;
-        // All of them are requested before the first is tested, so their cache misses overlap.
+        // All of them are requested before the first is tested, so their cache misses overlap;
+        // so are the inner children the ray goes on to, whose misses then overlap the tests.
         for (int m = leaves & (leaves - 1); m; m &= m - 1)
           prefetch_leaf<kCompact>(node.child[__builtin_ctz(m)]);
+        for (int m = mask; m; m &= m - 1) prefetch_block<N>(node.child[__builtin_ctz(m)]);
         for (int m = leaves; m; m &= m - 1) {
           const NodeRef leaf = node.child[__builtin_ctz(m)];
           bool leaf_hit;
@@ -312,9 +315,16 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
           }
         }
         if constexpr (!kAnyHit) {
-          for (int m = mask; m; m &= m - 1) {
-            const int i = __builtin_ctz(m);
-            if (!(dist[i] <= tfar)) mask &= ~(1 << i);
+          // Inner children beyond a hit the leaves found are dropped (all at once where the
+          // distances fill a SIMD register).
+          if constexpr (N >= 4) {
+            using L = LanesOf<N>;
+            mask &= L::movemask(L::le(L::load(dist), L::set1(tfar)));
+          } else {
+            for (int m = mask; m; m &= m - 1) {
+              const int i = __builtin_ctz(m);
+              if (!(dist[i] <= tfar)) mask &= ~(1 << i);
+            }
           }
         }
         if (mask == 0) goto pop;
@@ -415,6 +425,9 @@ inline int direction_octant(const Vec3f& d) {
 // direction (which enters no box) must not hand its rows to the others.
 inline void near_rows_of_octant(int octant, int (&near_row)[3]) {
   for (int a = 0; a < 3; ++a) near_row[a] = (octant >> a) & 1 ? a + 3 : a;
+}
+inline void far_rows_of_octant(int octant, int (&far_row)[3]) {
+  for (int a = 0; a < 3; ++a) far_row[a] = (octant >> a) & 1 ? a : a + 3;
 }
 
 // Sorts a batch into direction octants (as Embree's ray streams do) and calls
