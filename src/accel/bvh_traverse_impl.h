@@ -152,8 +152,7 @@ struct NodeTest {
 template <bool kCompact, bool kRobust>
 struct NodeTest<2, kCompact, kRobust> {
   using Node = std::conditional_t<kCompact, CompactNode<2>, FastNode<2>>;
-  static int run(const Node& n, const TraversalRay& r, const RowOffsets&, float tfar,
-                 float* dist) {
+  static int run(const Node& n, const TraversalRay& r, const RowOffsets&, float tfar, float* dist) {
     if constexpr (kCompact) {
       float rows[6][2];
       for (int k = 0; k < 6; ++k) {
