@@ -4,7 +4,7 @@
 //
 //   batch_replay SCENE.json [--scenes-dir DIR] [--bvh CONFIG] [--size WxH] [--spp N]
 //                [--repeats R] [--pollute KiB] [--single 0|1] [--ab-env VAR=VALUE]
-//                [--ab-copies K]
+//                [--ab-copies K] [--only camera|bounce|shadow]
 //
 // The batches are recorded once from a single-threaded render with native Embree (a pass-through
 // accelerator keeps a copy of every batch), then traced again and again, one thread, native and
@@ -106,6 +106,7 @@ double lowest(const std::vector<double>& v) {
 
 struct Replayer {
   const std::vector<Batch>* batches;
+  int only = -1;  // replay only this phase (--only), e.g. to count one phase's instructions
   std::vector<char> junk;
   std::vector<Hit> hits;
   std::vector<uint8_t> blocked;
@@ -122,6 +123,7 @@ struct Replayer {
     std::vector<double> seconds(kPhases, 0.0);
     checksum = 0;
     for (const Batch& b : *batches) {
+      if (only >= 0 && b.phase != only) continue;
       if (!junk.empty()) pollute();
       const double t0 = thread_seconds();
       if (b.phase == kShadow) {
@@ -154,6 +156,7 @@ int main(int argc, char** argv) {
   }
   std::string scene_spec = argv[1], scenes_dir, bvh, ab_env;
   int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0, ab_copies = 1;
+  int only = -1;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--scenes-dir") {
@@ -168,6 +171,14 @@ int main(int argc, char** argv) {
       repeats = std::atoi(value.c_str());
     } else if (key == "--pollute") {
       pollute_kib = std::atoi(value.c_str());
+    } else if (key == "--only") {
+      for (int p = 0; p < kPhases; ++p)
+        if (value == kPhaseName[p]) only = p;
+      if (only < 0) {
+        std::fprintf(stderr, "batch_replay: --only takes camera, bounce or shadow, not '%s'\n",
+                     value.c_str());
+        return 2;
+      }
     } else if (key == "--ab-env") {
       ab_env = value;
     } else if (key == "--ab-copies") {
@@ -226,6 +237,7 @@ int main(int argc, char** argv) {
 
   Replayer replay;
   replay.batches = &recorder.batches;
+  replay.only = only;
   replay.junk.assign(static_cast<size_t>(pollute_kib) << 10, 1);
   SingleRayAccel native_single(native);
   std::vector<double> times[4][kPhases];
