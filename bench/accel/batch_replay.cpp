@@ -3,7 +3,8 @@
 // the render's own rays without the shading between them.
 //
 //   batch_replay SCENE.json [--scenes-dir DIR] [--bvh CONFIG] [--size WxH] [--spp N]
-//                [--repeats R] [--pollute KiB] [--single 0|1]
+//                [--repeats R] [--pollute KiB] [--single 0|1] [--ab-env VAR=VALUE]
+//                [--ab-copies K] [--only camera|bounce|shadow]
 //
 // The batches are recorded once from a single-threaded render with native Embree (a pass-through
 // accelerator keeps a copy of every batch), then traced again and again, one thread, native and
@@ -12,6 +13,14 @@
 // of an unrelated buffer after every batch, as the render's shading evicts part of the tree from
 // the caches between batches. `--single 1` adds native Embree called once per ray (Accel's
 // default batch loop), the yardstick of `bench traversal`'s ray sets.
+//
+// `--ab-env VAR=VALUE` adds a second tuned backend, built after setting that environment
+// variable, to the same rotation, and prints tuned/second per phase: an A/B of an experimental
+// switch that the library reads from the environment, on the same rays in one process. With
+// `--ab-copies K` each of the two is built K times (trees at other addresses) and timed as the
+// mean over its copies. With a variable nothing reads it is an A/A run, which measures what the
+// placement of two identical trees alone does to a replay (2026-11-25 on this machine: 0.95 to
+// 1.08 with one copy each, conference and bunny).
 #include <tbb/global_control.h>
 #include <time.h>
 
@@ -97,6 +106,7 @@ double lowest(const std::vector<double>& v) {
 
 struct Replayer {
   const std::vector<Batch>* batches;
+  int only = -1;  // replay only this phase (--only), e.g. to count one phase's instructions
   std::vector<char> junk;
   std::vector<Hit> hits;
   std::vector<uint8_t> blocked;
@@ -113,6 +123,7 @@ struct Replayer {
     std::vector<double> seconds(kPhases, 0.0);
     checksum = 0;
     for (const Batch& b : *batches) {
+      if (only >= 0 && b.phase != only) continue;
       if (!junk.empty()) pollute();
       const double t0 = thread_seconds();
       if (b.phase == kShadow) {
@@ -143,8 +154,9 @@ int main(int argc, char** argv) {
                  "[--repeats R] [--pollute KiB] [--single 0|1]\n");
     return 2;
   }
-  std::string scene_spec = argv[1], scenes_dir, bvh;
-  int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0;
+  std::string scene_spec = argv[1], scenes_dir, bvh, ab_env;
+  int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0, ab_copies = 1;
+  int only = -1;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--scenes-dir") {
@@ -159,6 +171,18 @@ int main(int argc, char** argv) {
       repeats = std::atoi(value.c_str());
     } else if (key == "--pollute") {
       pollute_kib = std::atoi(value.c_str());
+    } else if (key == "--only") {
+      for (int p = 0; p < kPhases; ++p)
+        if (value == kPhaseName[p]) only = p;
+      if (only < 0) {
+        std::fprintf(stderr, "batch_replay: --only takes camera, bounce or shadow, not '%s'\n",
+                     value.c_str());
+        return 2;
+      }
+    } else if (key == "--ab-env") {
+      ab_env = value;
+    } else if (key == "--ab-copies") {
+      ab_copies = std::max(1, std::atoi(value.c_str()));
     } else if (key == "--single") {
       single = std::atoi(value.c_str());
     } else {
@@ -176,6 +200,24 @@ int main(int argc, char** argv) {
   native.build(g);
   TunedBvhAccel tuned(parse_bvh_config(bvh));
   tuned.build(g);
+  // --ab-env VAR=VALUE: a second tuned backend built with that environment variable set, replayed
+  // in the same rotation (an A/B of a library switch on the same rays in one process).
+  // Each variant is built --ab-copies times (trees at different addresses, whose cache and page
+  // placement alone moves a replay by several per cent) and timed as the sum over its copies.
+  std::vector<std::unique_ptr<TunedBvhAccel>> copies_a, copies_b;
+  if (!ab_env.empty()) {
+    for (int k = 1; k < ab_copies; ++k) {
+      copies_a.push_back(std::make_unique<TunedBvhAccel>(parse_bvh_config(bvh)));
+      copies_a.back()->build(g);
+    }
+    const size_t eq = ab_env.find('=');
+    setenv(ab_env.substr(0, eq).c_str(), ab_env.substr(eq + 1).c_str(), 1);
+    for (int k = 0; k < ab_copies; ++k) {
+      copies_b.push_back(std::make_unique<TunedBvhAccel>(parse_bvh_config(bvh)));
+      copies_b.back()->build(g);
+    }
+  }
+  const bool ab = !copies_b.empty();
 
   RecordingAccel recorder(native);
   RenderSettings settings;
@@ -195,16 +237,24 @@ int main(int argc, char** argv) {
 
   Replayer replay;
   replay.batches = &recorder.batches;
+  replay.only = only;
   replay.junk.assign(static_cast<size_t>(pollute_kib) << 10, 1);
   SingleRayAccel native_single(native);
-  std::vector<double> times[3][kPhases];
-  uint64_t sums[3] = {};
-  const Accel* accels[3] = {&native, &tuned, &native_single};
+  std::vector<double> times[4][kPhases];
+  uint64_t sums[4] = {};
+  std::vector<const Accel*> group[4] = {{&native}, {&tuned}, {&native_single}, {}};
+  for (const auto& c : copies_a) group[1].push_back(c.get());
+  for (const auto& c : copies_b) group[3].push_back(c.get());
   for (int r = -1; r < repeats; ++r) {  // r = -1 warms up
-    for (int a = 0; a < 3; ++a) {
-      const int which = (r & 1) ? 2 - a : a;  // alternate the order
+    for (int a = 0; a < 4; ++a) {
+      const int which = (r & 1) ? 3 - a : a;  // alternate the order
       if (which == 2 && !single) continue;
-      const std::vector<double> s = replay.run(*accels[which], sums[which]);
+      if (group[which].empty()) continue;
+      std::vector<double> s(kPhases, 0.0);
+      for (const Accel* accel : group[which]) {
+        const std::vector<double> one = replay.run(*accel, sums[which]);
+        for (int p = 0; p < kPhases; ++p) s[p] += one[p] / static_cast<double>(group[which].size());
+      }
       if (r < 0) continue;
       for (int p = 0; p < kPhases; ++p) times[which][p].push_back(s[p]);
     }
@@ -217,6 +267,15 @@ int main(int argc, char** argv) {
     const double nl = lowest(times[0][p]) * 1e3, tl = lowest(times[1][p]) * 1e3;
     std::printf("%-7s %9zu %10.2f %10.2f %7.3f %10.2f %10.2f %7.3f %10.2f\n", kPhaseName[p],
                 rays[p], n, t, n / t, nl, tl, nl / tl, median(times[2][p]) * 1e3);
+  }
+  if (ab) {
+    for (int p = 0; p < kPhases; ++p) {
+      const double t = median(times[1][p]) * 1e3, b = median(times[3][p]) * 1e3;
+      const double tl = lowest(times[1][p]) * 1e3, bl = lowest(times[3][p]) * 1e3;
+      std::printf("ab %-7s tuned %10.2f  %s %10.2f  a/b %7.3f  lowest a/b %7.3f\n", kPhaseName[p],
+                  t, ab_env.c_str(), b, t / b, tl / bl);
+    }
+    std::printf("ab checksum %016llx\n", static_cast<unsigned long long>(sums[3]));
   }
   // Variants of the tuned kernels must give the same answers: compare this across binaries.
   std::printf("tuned answers checksum %016llx\n", static_cast<unsigned long long>(sums[1]));

@@ -89,6 +89,7 @@ inline const TraversalRay& lane_ray(Packet& pk, int i) {
       r.inv[a] = pk.inv_of[a][i];
       r.org_inv[a] = pk.org_inv_of[a][i];
       r.near_row[a] = (pk.nonnegative[a] >> i) & 1 ? a : a + 3;
+      r.far_row[a] = (pk.nonnegative[a] >> i) & 1 ? a + 3 : a;
     }
     r.tnear = pk.tnear_of[i];
     r.tfar = pk.tfar_of[i];

@@ -77,7 +77,7 @@ inline int box_test2(const float (&rows)[6][2], const TraversalRay& r, float tfa
     float tmin = r.tnear, tmax = kInf;
     for (int a = 0; a < 3; ++a) {
       const float near = rows[r.near_row[a]][i];
-      const float far = rows[(r.near_row[a] + 3) % 6][i];
+      const float far = rows[r.far_row[a]][i];
       float tn, tf;
       if constexpr (kRobust) {
         tn = (near - r.org[a]) * r.inv[a];
@@ -97,24 +97,42 @@ inline int box_test2(const float (&rows)[6][2], const TraversalRay& r, float tfa
   return mask;
 }
 
-// The near and far planes of a 4- or 8-wide node's children for rays of one octant
-// (`near_row`), loaded directly by row: no dynamically indexed register array, which would be
-// spilled to the stack on every node.
+// Byte offsets of a ray's near and far rows within a node's planes (fast: rows of N floats;
+// compact: rows of N bytes), set once per ray (or stream), so that the node loop adds them to
+// the node's address instead of scaling row numbers at every node.
+struct RowOffsets {
+  uintptr_t near[3], far[3];
+};
+template <int N, bool kCompact>
+inline RowOffsets row_offsets(const int* near_row, const int* far_row) {
+  constexpr uintptr_t kRowBytes = kCompact ? N : N * sizeof(float);
+  RowOffsets o;
+  for (int a = 0; a < 3; ++a) {
+    o.near[a] = static_cast<uintptr_t>(near_row[a]) * kRowBytes;
+    o.far[a] = static_cast<uintptr_t>(far_row[a]) * kRowBytes;
+  }
+  return o;
+}
+
+// The near and far planes of a 4- or 8-wide node's children for rays of one octant, loaded
+// directly by row: no dynamically indexed register array, which would be spilled to the stack
+// on every node.
 template <int N, bool kCompact>
 struct NodePlanes {
   using L = LanesOf<N>;
   using V = typename L::V;
   using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
-  static void load(const Node& n, const int* near_row, V (&nears)[3], V (&fars)[3]) {
+  static void load(const Node& n, const RowOffsets& o, V (&nears)[3], V (&fars)[3]) {
     for (int a = 0; a < 3; ++a) {
-      const int nr = near_row[a], fr = nr < 3 ? nr + 3 : nr - 3;
       if constexpr (kCompact) {
         const V scale = L::set1(n.scale[a]), origin = L::set1(n.origin[a]);
-        nears[a] = L::decode_u8(n.q[nr], scale, origin);
-        fars[a] = L::decode_u8(n.q[fr], scale, origin);
+        const uint8_t* q = &n.q[0][0];
+        nears[a] = L::decode_u8(q + o.near[a], scale, origin);
+        fars[a] = L::decode_u8(q + o.far[a], scale, origin);
       } else {
-        nears[a] = L::load(n.bounds[nr]);
-        fars[a] = L::load(n.bounds[fr]);
+        const char* rows = reinterpret_cast<const char*>(&n.bounds[0][0]);
+        nears[a] = L::load(reinterpret_cast<const float*>(rows + o.near[a]));
+        fars[a] = L::load(reinterpret_cast<const float*>(rows + o.far[a]));
       }
     }
   }
@@ -123,9 +141,10 @@ struct NodePlanes {
 template <int N, bool kCompact, bool kRobust>
 struct NodeTest {
   using Planes = NodePlanes<N, kCompact>;
-  static int run(const typename Planes::Node& n, const TraversalRay& r, float tfar, float* dist) {
+  static int run(const typename Planes::Node& n, const TraversalRay& r, const RowOffsets& o,
+                 float tfar, float* dist) {
     typename Planes::V nears[3], fars[3];
-    Planes::load(n, r.near_row, nears, fars);
+    Planes::load(n, o, nears, fars);
     return box_test<typename Planes::L, kRobust>(nears, fars, r, tfar, dist);
   }
 };
@@ -133,7 +152,7 @@ struct NodeTest {
 template <bool kCompact, bool kRobust>
 struct NodeTest<2, kCompact, kRobust> {
   using Node = std::conditional_t<kCompact, CompactNode<2>, FastNode<2>>;
-  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
+  static int run(const Node& n, const TraversalRay& r, const RowOffsets&, float tfar, float* dist) {
     if constexpr (kCompact) {
       float rows[6][2];
       for (int k = 0; k < 6; ++k) {
@@ -273,6 +292,7 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
   // assume may change the ray and tfar, reloading them at every node.
   const TraversalRay r = ray;
   float tfar = tfar_io;
+  const RowOffsets rows = row_offsets<N, kCompact>(r.near_row, r.far_row);
   bool found = false;
   StackEntry stack[kStackSize];
   int sp = 0;
@@ -281,7 +301,7 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
     while (!is_leaf(cur)) {
       const Node& node = *ref_ptr<Node>(cur);
       alignas(32) float dist[N];
-      int mask = NodeTest<N, kCompact, kRobust>::run(node, r, tfar, dist);
+      int mask = NodeTest<N, kCompact, kRobust>::run(node, r, rows, tfar, dist);
       if constexpr (kCompact) {
         // Slots past the last child decode to an inverted box, but a degenerate parent box
         // (all extents 0) would not reject them: mask them out explicitly.
@@ -295,9 +315,11 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
         // enters several small sibling leaves of a node at once, and their hits cull the inner
         // children before they are visited.
         mask &= ~leaves;
-        // All of them are requested before the first is tested, so their cache misses overlap.
+        // All of them are requested before the first is tested, so their cache misses overlap;
+        // so are the inner children the ray goes on to, whose misses then overlap the tests.
         for (int m = leaves & (leaves - 1); m; m &= m - 1)
           prefetch_leaf<kCompact>(node.child[__builtin_ctz(m)]);
+        for (int m = mask; m; m &= m - 1) prefetch_block<N>(node.child[__builtin_ctz(m)]);
         for (int m = leaves; m; m &= m - 1) {
           const NodeRef leaf = node.child[__builtin_ctz(m)];
           bool leaf_hit;
@@ -312,9 +334,16 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
           }
         }
         if constexpr (!kAnyHit) {
-          for (int m = mask; m; m &= m - 1) {
-            const int i = __builtin_ctz(m);
-            if (!(dist[i] <= tfar)) mask &= ~(1 << i);
+          // Inner children beyond a hit the leaves found are dropped (all at once where the
+          // distances fill a SIMD register).
+          if constexpr (N >= 4) {
+            using L = LanesOf<N>;
+            mask &= L::movemask(L::le(L::load(dist), L::set1(tfar)));
+          } else {
+            for (int m = mask; m; m &= m - 1) {
+              const int i = __builtin_ctz(m);
+              if (!(dist[i] <= tfar)) mask &= ~(1 << i);
+            }
           }
         }
         if (mask == 0) goto pop;
@@ -415,6 +444,9 @@ inline int direction_octant(const Vec3f& d) {
 // direction (which enters no box) must not hand its rows to the others.
 inline void near_rows_of_octant(int octant, int (&near_row)[3]) {
   for (int a = 0; a < 3; ++a) near_row[a] = (octant >> a) & 1 ? a + 3 : a;
+}
+inline void far_rows_of_octant(int octant, int (&far_row)[3]) {
+  for (int a = 0; a < 3; ++a) far_row[a] = (octant >> a) & 1 ? a : a + 3;
 }
 
 // Sorts a batch into direction octants (as Embree's ray streams do) and calls

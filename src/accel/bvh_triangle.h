@@ -25,6 +25,7 @@ struct TraversalRay {
   float inv[3];      // 1 / dir, tiny components replaced by ±1e-18 to avoid 0 * inf
   float org_inv[3];  // org * inv (the fast box test is one fmsub per plane)
   int near_row[3];   // row of the near plane per axis: a (dir >= 0) or a + 3
+  int far_row[3];    // the other row of the axis (set once per ray, not at every node)
   // Watertight test: ray-space axes and shear.
   int kx = 0, ky = 1, kz = 2;
   float sx = 0, sy = 0, sz = 1;
@@ -45,6 +46,7 @@ inline TraversalRay make_traversal_ray(const Vec3f& org, const Vec3f& dir, float
     r.inv[a] = 1.0f / d;
     r.org_inv[a] = org[a] * r.inv[a];
     r.near_row[a] = d >= 0 ? a : a + 3;
+    r.far_row[a] = d >= 0 ? a + 3 : a;
   }
   if (!watertight) return r;
   Vec3f ad{std::fabs(dir.x), std::fabs(dir.y), std::fabs(dir.z)};

@@ -106,6 +106,59 @@ TEST(TunedPackets, EqualDistancesGoToTheLowerTriangleOnBothPaths) {
   }
 }
 
+TEST(TunedPackets, ATieAtTheEntryOfASiblingLeafGoesToTheLowerTriangle) {
+  // Pairs of axis-aligned triangles on the plane z = 0.5, one triangle a leaf: a small one and a
+  // larger one around it (another box, so the build may put either first), the lower index
+  // alternating between them from pair to pair. Rays along +z through the small one hit both at
+  // exactly t = 0.5, which is also where they enter both (flat) leaf boxes. Whichever leaf a
+  // node tests first, the other must still be tested, not culled as lying beyond the hit found,
+  // so that the lower index wins on every path. Coordinates are multiples of 1/64 and the rays
+  // pass off every edge: all products are exact and t is 0.5 to the bit.
+  Mesh pairs;
+  std::vector<uint32_t> lower;  // per pair, the index every ray through it must get
+  const float step = 1.0f / 64.0f, z = 0.5f;
+  const int cells = 10, spacing = 6;
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i) {
+      const float x = static_cast<float>(spacing * i + 2) * step;
+      const float y = static_cast<float>(spacing * j + 1) * step;
+      auto at = [&](float u, float v) { return Vec3f(x + u * step, y + v * step, z); };
+      const uint32_t first = static_cast<uint32_t>(pairs.triangles.size());
+      if ((i + j) % 2 == 0) {
+        pairs.add(at(0, 0), at(1, 0), at(0, 1));      // small
+        pairs.add(at(-2, -1), at(2, -1), at(-2, 3));  // large, around it
+      } else {
+        pairs.add(at(-2, -1), at(2, -1), at(-2, 3));
+        pairs.add(at(0, 0), at(1, 0), at(0, 1));
+      }
+      lower.push_back(first);
+    }
+  std::vector<Ray> rays;
+  std::vector<uint32_t> expected;
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i)
+      for (const float u : {0.125f, 0.375f, 0.625f})
+        for (const float v : {0.125f, 0.25f}) {
+          const float x = (static_cast<float>(spacing * i + 2) + u) * step;
+          const float y = (static_cast<float>(spacing * j + 1) + v) * step;
+          rays.push_back(Ray{Vec3f(x, y, 0.0f), 0, Vec3f(0, 0, 1), kInf});
+          expected.push_back(lower[static_cast<size_t>(j * cells + i)]);
+        }
+  for (const char* text : {"branching=8,max_leaf=1", "branching=4,max_leaf=1,collapse=0"}) {
+    SCOPED_TRACE(text);
+    TunedBvhAccel tuned(parse_bvh_config(text));
+    tuned.build(pairs.view());
+    for (size_t r = 0; r < rays.size(); ++r) {
+      Hit h;
+      ASSERT_TRUE(tuned.intersect(rays[r], h)) << "ray " << r;
+      EXPECT_EQ(h.t, 0.5f) << "ray " << r;
+      EXPECT_EQ(h.prim, expected[r]) << "ray " << r;
+    }
+    EXPECT_EQ(expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent),
+              rays.size());
+  }
+}
+
 TEST(TunedPackets, ARayWithANanDirectionLeadingItsPacketChangesNoOtherHit) {
   const Mesh mesh = make_soup(4000, 43, 0.08f);
   // A NaN x component has a clear sign bit, so the ray joins the camera rays going towards +x;
