@@ -48,6 +48,16 @@ tuner::Space make_tune_space(const TuneOptions& o, const RenderSettings& setting
   return o.work_sizes ? make_render_space(settings, std::move(base)) : base;
 }
 
+std::vector<tuner::Config> race_entrants(const tuner::Space& space, const tuner::Config& best,
+                                         const std::vector<tuner::Config>& finalists,
+                                         bool native_in_space) {
+  std::vector<tuner::Config> entrants{best};
+  entrants.insert(entrants.end(), finalists.begin(), finalists.end());
+  if (native_in_space) entrants.push_back(to_tuner_config(space, AccelChoice::native()));
+  entrants.push_back(space.default_config());
+  return entrants;
+}
+
 TuneReport run_tune_session(const TuneOptions& o,
                             const std::function<void(const std::string&)>& log,
                             const std::function<void(const TuneProgress&)>& on_frame) {
@@ -206,14 +216,8 @@ TuneReport run_tune_session(const TuneOptions& o,
     }
     tuner::Config best = tuner.best(state);
     if (o.finalists > 0) {
-      std::vector<tuner::Config> finalists{best};
-      for (const tuner::Config& c : tuner.finalists(state, static_cast<size_t>(o.finalists)))
-        finalists.push_back(c);
-      const bool native_finalist =
-          std::any_of(finalists.begin(), finalists.end(),
-                      [](const tuner::Config& c) { return to_accel_choice(c).is_native(); });
-      if (o.native_in_space && !native_finalist)
-        finalists.push_back(to_tuner_config(space, native_choice));
+      const std::vector<tuner::Config> finalists = race_entrants(
+          space, best, tuner.finalists(state, static_cast<size_t>(o.finalists)), o.native_in_space);
       best = race(finalists, cameras[ci], r);
     }
     const Candidate chosen_candidate{to_accel_choice(best), work_of(best)};

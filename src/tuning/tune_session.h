@@ -105,6 +105,17 @@ std::string tuning_key(const TuneOptions& options);
 // asked for), its defaults from `settings`.
 tuner::Space make_tune_space(const TuneOptions& options, const RenderSettings& settings);
 
+// Who races at a camera: the tuner's best (first, so that a win by anyone else "changes the
+// choice"), its other finalists, and always both yardsticks, native Embree (medium, when in the
+// space) and the default configuration, even when a variant of native (quality=low) is a finalist:
+// otherwise a race among variants can choose one slower than either yardstick, and the cameras
+// that exploit that choice inherit it (lost-empire: native low at 0.91-0.96 of native medium on
+// five cameras, native chosen on three where the default was 1.08x faster). The race drops
+// duplicates.
+std::vector<tuner::Config> race_entrants(const tuner::Space& space, const tuner::Config& best,
+                                         const std::vector<tuner::Config>& finalists,
+                                         bool native_in_space);
+
 // Runs the loop; `log` receives one line per camera, `on_frame` is called after every frame
 // (both may be empty).
 TuneReport run_tune_session(const TuneOptions& options,

@@ -12,6 +12,7 @@
 #include "tuner/temp_path.h"
 #include "tuner/tuning_db.h"
 #include "tuning/accel_choice.h"
+#include "tuning/bvh_space.h"
 #include "tuning/tune_session.h"
 
 namespace tuneray {
@@ -56,6 +57,39 @@ TEST(TuneNative, SpaceFollowsTheOptions) {
   o.work_sizes = true;
   tuner::Space work = make_tune_space(o, settings);
   EXPECT_EQ(work.param(work.size() - 3).name, "scheduler");
+}
+
+// The race always has both yardsticks: a finalist that is a variant of native (quality=low) does
+// not stand in for native medium, and the default races even when the tuner ranks it last.
+TEST(TuneNative, TheRaceAlwaysHasNativeMediumAndTheDefault) {
+  TuneOptions o;
+  const tuner::Space space = make_tune_space(o, RenderSettings{});
+  const tuner::Config native_low = to_tuner_config(space, AccelChoice::native(BvhQuality::kLow));
+  BvhConfig wide;
+  wide.branching = 8;
+  const tuner::Config tuned_wide = to_tuner_config(space, AccelChoice::tuned(wide));
+  auto names = [](const std::vector<tuner::Config>& configs) {
+    std::vector<std::string> out;
+    for (const tuner::Config& c : configs) out.push_back(to_accel_choice(c).to_string());
+    return out;
+  };
+  const std::vector<std::string> entrants =
+      names(race_entrants(space, native_low, {native_low, tuned_wide}, true));
+  ASSERT_EQ(entrants.size(), 5u);
+  EXPECT_EQ(entrants[0], AccelChoice::native(BvhQuality::kLow).to_string());  // the tuner's best
+  EXPECT_EQ(entrants[2], AccelChoice::tuned(wide).to_string());
+  EXPECT_EQ(entrants[3], AccelChoice::native().to_string());
+  EXPECT_EQ(entrants[4], AccelChoice::tuned(BvhConfig{}).to_string());
+
+  o.native_in_space = false;
+  const tuner::Space tuned_space = make_tune_space(o, RenderSettings{});
+  const tuner::Config best = to_tuner_config(tuned_space, AccelChoice::tuned(wide));
+  const std::vector<std::string> tuned_only = names(race_entrants(tuned_space, best, {}, false));
+  ASSERT_EQ(tuned_only.size(), 2u);
+  // (The BVH-only space predates the collapse: its default is the uncollapsed tree.)
+  EXPECT_EQ(tuned_only[1], to_accel_choice(tuned_space.default_config()).to_string());
+  EXPECT_NE(tuned_only[1], tuned_only[0]);
+  for (const std::string& name : tuned_only) EXPECT_EQ(name.find("native"), std::string::npos);
 }
 
 // The first simplex spans both backends, so a search of 13 frames (12 parameters + 1) has
