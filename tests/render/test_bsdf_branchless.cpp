@@ -6,23 +6,15 @@
 #include <cmath>
 
 #include "math/rng.h"
+#include "random_bsdf_inputs.h"
 #include "render/bsdf.h"
 #include "render/sampling.h"
 
 namespace tuneray {
 namespace {
 
-Vec3f random_direction(Pcg32& rng) {
-  float z = 1.0f - 2.0f * rng.next_float();
-  float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  float phi = 2.0f * kPi * rng.next_float();
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
-Color random_color(Pcg32& rng, float zero_chance) {
-  if (rng.next_float() < zero_chance) return Color(0.0f);
-  return Color(rng.next_float(), rng.next_float(), rng.next_float());
-}
+using testing::random_color;
+using testing::random_direction;
 
 void expect_close(float a, float b, const char* what, MaterialType type, int trial) {
   EXPECT_LE(std::abs(a - b), 1e-5f * std::abs(b) + 1e-12f)
