@@ -66,7 +66,8 @@ int run_tune(TuneArgs& a) {
         fmt::format("[{:.3f}, {:.3f}]", c.speedup_low, c.speedup_high), c.vs_native(),
         fmt::format("[{:.3f}, {:.3f}]", c.vs_native_low, c.vs_native_high),
         fmt::format("{}{}", c.compare_rounds, c.compare_within_target ? "" : "*"), c.accumulated_ms,
-        c.config + (c.race_changed_choice ? " (race)" : ""));
+        c.config + (c.race_changed_choice ? " (race)" : "") +
+            (c.fallback.empty() ? "" : fmt::format(" (kept {})", c.fallback)));
   fmt::print(
       "\nspeedup over the default configuration: median {:.3f}, geometric mean {:.3f}; "
       "{} of {} cameras searched, {} failed builds\n",
@@ -81,6 +82,11 @@ int run_tune(TuneArgs& a) {
         "race of the finalists: {} frames beside the searches' {}; chose another configuration "
         "than the tuner's best at {} of {} cameras\n",
         sum.race_frames, sum.search_frames, sum.race_changed, report.cameras.size());
+  if (sum.fallbacks > 0)
+    fmt::print(
+        "kept a yardstick at {} of {} cameras: the tuner's choice measured slower than the "
+        "default or native, its whole 95 % interval below 1 (its ratios in --json, 'rejected')\n",
+        sum.fallbacks, report.cameras.size());
   if (sum.capped > 0)
     fmt::print(
         "* {} of {} cameras reached the round cap with an interval wider than ±{:.0f} %: the "

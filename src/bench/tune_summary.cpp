@@ -16,6 +16,7 @@ TuneSummary summarize_tune(const TuneReport& report) {
     s.race_changed += c.race_changed_choice;
     s.race_frames += c.race_frames;
     s.search_frames += c.frames;
+    s.fallbacks += !c.fallback.empty();
   }
   s.speedup_median = median(speedups);
   s.speedup_geomean = geometric_mean(speedups);
@@ -47,6 +48,10 @@ nlohmann::json tune_report_json(const TuneOptions& o, const std::string& objecti
                     {"race_changed_choice", c.race_changed_choice},
                     {"backend", c.backend},
                     {"config", c.config},
+                    {"fallback", c.fallback},
+                    {"rejected", c.rejected},
+                    {"rejected_vs_native", c.rejected_vs_native},
+                    {"rejected_speedup", c.rejected_speedup},
                     {"converged", c.converged}});
   TuneSummary s = summarize_tune(report);
   return {{"scene", o.scene},
@@ -69,6 +74,7 @@ nlohmann::json tune_report_json(const TuneOptions& o, const std::string& objecti
            {{"changed_choice", s.race_changed},
             {"frames", s.race_frames},
             {"search_frames", s.search_frames}}},
+          {"fallbacks", s.fallbacks},
           {"speedup", {{"median", s.speedup_median}, {"geomean", s.speedup_geomean}}},
           {"vs_native", {{"median", s.vs_native_median}, {"geomean", s.vs_native_geomean}}}};
 }

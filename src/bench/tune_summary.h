@@ -18,6 +18,7 @@ struct TuneSummary {
   int race_changed = 0;   // cameras where the finalists' race overruled the tuner's best
   int race_frames = 0;    // frames the races took, over all cameras
   int search_frames = 0;  // frames the searches took, over all cameras
+  int fallbacks = 0;      // cameras that kept a yardstick: the tuner's choice measured slower
 };
 TuneSummary summarize_tune(const TuneReport& report);
 

@@ -58,6 +58,17 @@ std::vector<tuner::Config> race_entrants(const tuner::Space& space, const tuner:
   return entrants;
 }
 
+KeepAfterComparison keep_after_comparison(const RatioInterval& speedup,
+                                          const RatioInterval& vs_native,
+                                          const RatioInterval& native_over_default,
+                                          bool native_in_space) {
+  const bool slower_than_default = speedup.high < 1.0;
+  const bool slower_than_native = native_in_space && vs_native.high < 1.0;
+  if (!slower_than_default && !slower_than_native) return KeepAfterComparison::kChosen;
+  if (native_in_space && native_over_default.ratio < 1.0) return KeepAfterComparison::kNative;
+  return KeepAfterComparison::kDefault;
+}
+
 TuneReport run_tune_session(const TuneOptions& o,
                             const std::function<void(const std::string&)>& log,
                             const std::function<void(const TuneProgress&)>& on_frame) {
@@ -122,9 +133,10 @@ TuneReport run_tune_session(const TuneOptions& o,
         [&](size_t i) { return bench.run(distinct[i].first, distinct[i].second, camera); }, what,
         options);
   };
-  // Fills the yardsticks of `r` from candidates {default, native, chosen}.
+  // Fills the yardsticks of `r` from candidates {default, native, chosen}; returns which of
+  // the three the camera keeps (keep_after_comparison) and fills `r`'s ratios for that one.
   auto compare = [&](const std::vector<Candidate>& candidates, const CameraDesc& camera,
-                     CameraTuneResult& r) {
+                     CameraTuneResult& r) -> size_t {
     std::vector<std::string> names, configs;
     std::vector<Candidate> measured;
     for (const Candidate& c : candidates) {
@@ -135,11 +147,29 @@ TuneReport run_tune_session(const TuneOptions& o,
     }
     const EvalComparison c = measure(configs, measured, camera,
                                      fmt::format("tune, camera {}", r.camera), compare_options);
+    size_t kept = 2;
+    switch (keep_after_comparison(c.ratio(names[0], names[2]), c.ratio(names[1], names[2]),
+                                  c.ratio(names[1], names[0]), o.native_in_space)) {
+      case KeepAfterComparison::kChosen:
+        break;
+      case KeepAfterComparison::kDefault:
+        kept = 0;
+        r.fallback = "default";
+        break;
+      case KeepAfterComparison::kNative:
+        kept = 1;
+        r.fallback = "native";
+        break;
+    }
+    if (kept != 2) {
+      r.rejected_speedup = c.ratio(names[0], names[2]).ratio;
+      r.rejected_vs_native = c.ratio(names[1], names[2]).ratio;
+    }
     r.default_ms = c.cost_ms(names[0]);
     r.native_ms = c.cost_ms(names[1]);
-    r.chosen_ms = c.cost_ms(names[2]);
-    const RatioInterval speedup = c.ratio(names[0], names[2]);
-    const RatioInterval vs_native = c.ratio(names[1], names[2]);
+    r.chosen_ms = c.cost_ms(names[kept]);
+    const RatioInterval speedup = c.ratio(names[0], names[kept]);
+    const RatioInterval vs_native = c.ratio(names[1], names[kept]);
     r.speedup_ratio = speedup.ratio;
     r.speedup_low = speedup.low;
     r.speedup_high = speedup.high;
@@ -148,6 +178,7 @@ TuneReport run_tune_session(const TuneOptions& o,
     r.vs_native_high = vs_native.high;
     r.compare_rounds = c.rounds();
     r.compare_within_target = c.within_target;
+    return kept;
   };
   InterleavedOptions race_options;
   race_options.min_rounds = race_options.max_rounds = std::max(1, o.race_rounds);
@@ -221,26 +252,35 @@ TuneReport run_tune_session(const TuneOptions& o,
       best = race(finalists, cameras[ci], r);
     }
     const Candidate chosen_candidate{to_accel_choice(best), work_of(best)};
-    const auto& [chosen, chosen_work] = chosen_candidate;
     // The baselines are measured outside the tuner: they are yardsticks, not tuning decisions.
     // The race's rounds are not reused: the winner of a race is again biased towards its lucky
     // rounds, so its speed is measured anew.
-    compare({{default_choice, default_work}, {native_choice, default_work}, {chosen, chosen_work}},
-            cameras[ci], r);
-    r.config = chosen.to_string();
-    if (o.work_sizes) r.config += "," + chosen_work.to_string();
-    r.backend = to_string(chosen.backend);
+    const std::vector<Candidate> compared{
+        {default_choice, default_work}, {native_choice, default_work}, chosen_candidate};
+    const size_t kept = compare(compared, cameras[ci], r);
+    auto describe = [&](const Candidate& c) {
+      return o.work_sizes ? c.first.to_string() + "," + c.second.to_string() : c.first.to_string();
+    };
+    if (kept != 2) r.rejected = describe(chosen_candidate);
+    r.config = describe(compared[kept]);
+    r.backend = to_string(compared[kept].first.backend);
     if (auto s = tuner.summary(state)) r.converged = s->converged;
     if (log)
       log(fmt::format(
-          "camera {:>3} {:<8} default {:8.2f} ms  native {:8.2f} ms  chosen {:8.2f} ms  "
-          "speedup {:5.2f} [{:.2f}, {:.2f}]  vs native {:5.2f} [{:.2f}, {:.2f}]  {} rounds  {}{}",
-          r.camera, r.mode, r.default_ms, r.native_ms, r.chosen_ms, r.speedup(), r.speedup_low,
-          r.speedup_high, r.vs_native(), r.vs_native_low, r.vs_native_high, r.compare_rounds,
-          r.config,
-          r.race_frames > 0 ? fmt::format("  (race of {}{})", r.race_candidates,
-                                          r.race_changed_choice ? ", changed the choice" : "")
-                            : ""));
+              "camera {:>3} {:<8} default {:8.2f} ms  native {:8.2f} ms  chosen {:8.2f} ms  "
+              "speedup {:5.2f} [{:.2f}, {:.2f}]  vs native {:5.2f} [{:.2f}, {:.2f}]  {} rounds  "
+              "{}{}",
+              r.camera, r.mode, r.default_ms, r.native_ms, r.chosen_ms, r.speedup(), r.speedup_low,
+              r.speedup_high, r.vs_native(), r.vs_native_low, r.vs_native_high, r.compare_rounds,
+              r.config,
+              r.race_frames > 0 ? fmt::format("  (race of {}{})", r.race_candidates,
+                                              r.race_changed_choice ? ", changed the choice" : "")
+                                : "") +
+          (r.fallback.empty()
+               ? ""
+               : fmt::format("  (kept {}: the tuner's {} measured {:.2f} vs native, {:.2f} over "
+                             "the default)",
+                             r.fallback, r.rejected, r.rejected_vs_native, r.rejected_speedup)));
     report.cameras.push_back(r);
   }
   return report;

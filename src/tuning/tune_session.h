@@ -13,6 +13,7 @@
 
 #include "tuner/space.h"
 #include "tuning/frame_bench.h"
+#include "tuning/interleaved_ratios.h"
 
 namespace tuneray {
 
@@ -79,6 +80,12 @@ struct CameraTuneResult {
   bool race_changed_choice = false;
   std::string config;   // chosen configuration (backend and BVH, then work sizes if tuned)
   std::string backend;  // of the chosen configuration: "tuned" or "native"
+  // "default" or "native" when the tuner's choice measured slower than that yardstick in the
+  // comparison (keep_after_comparison) and the yardstick is kept instead; then `rejected` is
+  // the tuner's choice and `rejected_vs_native` / `rejected_speedup` what it measured.
+  std::string fallback;
+  std::string rejected;
+  double rejected_vs_native = 0, rejected_speedup = 0;
   bool converged = false;
   double speedup() const { return speedup_ratio; }
   double vs_native() const { return vs_native_ratio; }
@@ -115,6 +122,19 @@ tuner::Space make_tune_space(const TuneOptions& options, const RenderSettings& s
 std::vector<tuner::Config> race_entrants(const tuner::Space& space, const tuner::Config& best,
                                          const std::vector<tuner::Config>& finalists,
                                          bool native_in_space);
+
+// What a camera keeps after the comparison, given the chosen configuration's ratios
+// (`speedup`: default cost / chosen cost; `vs_native`: native cost / chosen cost, each a median
+// with its 95 % interval) and `native_over_default` (native cost / default cost). The choice
+// stands unless its whole interval against a yardstick lies below 1, i.e. it measured slower
+// than the default or (when native is in the space) than native; then the faster of the
+// allowed yardsticks by median is kept, so that tuning never ends measurably slower than what
+// it started from or what the user would use instead.
+enum class KeepAfterComparison { kChosen, kDefault, kNative };
+KeepAfterComparison keep_after_comparison(const RatioInterval& speedup,
+                                          const RatioInterval& vs_native,
+                                          const RatioInterval& native_over_default,
+                                          bool native_in_space);
 
 // Runs the loop; `log` receives one line per camera, `on_frame` is called after every frame
 // (both may be empty).

@@ -92,6 +92,38 @@ TEST(TuneNative, TheRaceAlwaysHasNativeMediumAndTheDefault) {
   for (const std::string& name : tuned_only) EXPECT_EQ(name.find("native"), std::string::npos);
 }
 
+// The tuner's choice stands unless a yardstick beat it with the whole interval; then the faster
+// yardstick by median is kept, and native only when it is in the space.
+TEST(TuneNative, AChoiceMeasuredSlowerThanAYardstickFallsBackToTheFasterOne) {
+  auto interval = [](double ratio, double low, double high) {
+    RatioInterval r;
+    r.ratio = ratio;
+    r.low = low;
+    r.high = high;
+    return r;
+  };
+  const RatioInterval even = interval(1.0, 0.97, 1.03);
+  const RatioInterval faster = interval(1.08, 1.04, 1.12);
+  const RatioInterval slower = interval(0.93, 0.91, 0.95);
+  const RatioInterval native_cheaper = interval(0.95, 0.92, 0.98);  // native cost / default cost
+  const RatioInterval default_cheaper = interval(1.05, 1.02, 1.08);
+  using K = KeepAfterComparison;
+  EXPECT_EQ(keep_after_comparison(faster, faster, even, true), K::kChosen);
+  EXPECT_EQ(keep_after_comparison(even, even, even, true), K::kChosen);
+  // An interval that reaches 1 is not evidence: the choice stands.
+  EXPECT_EQ(keep_after_comparison(interval(0.96, 0.92, 1.0), even, even, true), K::kChosen);
+  // Slower than native (conference, camera 1 of the twelfth session's run): native kept when it
+  // is the faster yardstick, the default when that is.
+  EXPECT_EQ(keep_after_comparison(even, slower, native_cheaper, true), K::kNative);
+  EXPECT_EQ(keep_after_comparison(even, slower, default_cheaper, true), K::kDefault);
+  // Slower than the default: the default, unless native is faster still.
+  EXPECT_EQ(keep_after_comparison(slower, even, default_cheaper, true), K::kDefault);
+  EXPECT_EQ(keep_after_comparison(slower, even, native_cheaper, true), K::kNative);
+  // Without native in the space it is never kept, and losing to it is no reason to fall back.
+  EXPECT_EQ(keep_after_comparison(even, slower, native_cheaper, false), K::kChosen);
+  EXPECT_EQ(keep_after_comparison(slower, slower, native_cheaper, false), K::kDefault);
+}
+
 // The first simplex spans both backends, so a search of 13 frames (12 parameters + 1) has
 // measured native Embree; and every camera reports it beside default and chosen.
 TEST(TuneNative, EverySearchMeasuresNativeAndTheReportHasIt) {
