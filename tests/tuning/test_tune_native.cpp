@@ -179,12 +179,27 @@ TEST(TuneNative, AConfigurationComparedWithItselfReportsExactlyOne) {
   const CameraTuneResult& c = report.cameras[0];
   EXPECT_EQ(c.race_candidates, 0);
   EXPECT_EQ(c.race_frames, 0);
-  ASSERT_EQ(c.config, AccelChoice::tuned(BvhConfig{}).to_string());
-  EXPECT_EQ(c.speedup(), 1.0);
-  EXPECT_EQ(c.speedup_low, 1.0);
-  EXPECT_EQ(c.speedup_high, 1.0);
-  EXPECT_EQ(c.default_ms, c.chosen_ms);
-  EXPECT_NE(c.native_ms, c.chosen_ms);  // native is another configuration, measured apart
+  const std::string default_config = AccelChoice::tuned(BvhConfig{}).to_string();
+  if (c.fallback.empty()) {
+    ASSERT_EQ(c.config, default_config);
+    EXPECT_EQ(c.speedup(), 1.0);
+    EXPECT_EQ(c.speedup_low, 1.0);
+    EXPECT_EQ(c.speedup_high, 1.0);
+    EXPECT_EQ(c.default_ms, c.chosen_ms);
+    EXPECT_NE(c.native_ms, c.chosen_ms);  // native is another configuration, measured apart
+  } else {
+    // The default measured slower than native (whole interval below 1; a slow machine, or a
+    // sanitizer build): native is kept, and it is now native that is compared with itself.
+    ASSERT_EQ(c.fallback, "native");
+    EXPECT_EQ(c.rejected, default_config);
+    EXPECT_LT(c.rejected_vs_native, 1.0);
+    ASSERT_EQ(c.config, AccelChoice::native().to_string());
+    EXPECT_EQ(c.vs_native(), 1.0);
+    EXPECT_EQ(c.vs_native_low, 1.0);
+    EXPECT_EQ(c.vs_native_high, 1.0);
+    EXPECT_EQ(c.native_ms, c.chosen_ms);
+    EXPECT_NE(c.default_ms, c.chosen_ms);
+  }
 }
 
 // After a one-frame search the tuner's only measured configuration is the default, so the race
@@ -202,8 +217,16 @@ TEST(TuneNative, TheFinalistsRaceNativeAndTheWinnerIsChosen) {
   const CameraTuneResult& c = report.cameras[0];
   EXPECT_EQ(c.race_candidates, 2);
   EXPECT_EQ(c.race_frames, 2 * (2 + 1));
-  EXPECT_EQ(c.config, c.race_changed_choice ? AccelChoice::native().to_string()
-                                            : AccelChoice::tuned(BvhConfig{}).to_string());
+  const std::string raced = c.race_changed_choice ? AccelChoice::native().to_string()
+                                                  : AccelChoice::tuned(BvhConfig{}).to_string();
+  if (c.fallback.empty()) {
+    EXPECT_EQ(c.config, raced);
+  } else {  // the race's winner measured slower than the other yardstick afterwards
+    EXPECT_EQ(c.rejected, raced);
+    EXPECT_EQ(c.config, c.fallback == "native" ? AccelChoice::native().to_string()
+                                               : AccelChoice::tuned(BvhConfig{}).to_string());
+    EXPECT_NE(c.config, raced);
+  }
   // Every timed round of the race is a sample of the database, native's among them.
   {
     tuner::TuningDb db(db_path.str());
