@@ -35,12 +35,26 @@ class Pcg32 {
   uint64_t state() const { return state_; }
   uint64_t increment() const { return inc_; }
   void set_state(uint64_t state) { state_ = state; }
+  void set_state_and_increment(uint64_t state, uint64_t increment) {
+    state_ = state;
+    inc_ = increment;
+  }
 
   static constexpr uint64_t kMultiplier = 6364136223846793005ULL;
 
  private:
   uint64_t state_ = 0, inc_ = 1;
 };
+
+// a * b mod 2^64 in each 64-bit lane (AVX2 has no 64-bit multiply: three 32-bit products).
+inline __m256i mul64_lanes(__m256i a, uint64_t b) {
+  const __m256i b_lo = _mm256_set1_epi64x(static_cast<long long>(b & 0xffffffffu));
+  const __m256i b_hi = _mm256_set1_epi64x(static_cast<long long>(b >> 32));
+  const __m256i low = _mm256_mul_epu32(a, b_lo);
+  const __m256i cross =
+      _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(a, 32), b_lo), _mm256_mul_epu32(a, b_hi));
+  return _mm256_add_epi64(low, _mm256_slli_epi64(cross, 32));
+}
 
 // Four Pcg32 generators stepped in AVX2 lanes: next_floats() gives what next_float() of each
 // would give, bit for bit (AVX2 has no 64-bit multiply; the product is assembled from three
@@ -56,16 +70,18 @@ class Pcg32x4 {
             static_cast<long long>(g[2]->increment()), static_cast<long long>(g[3]->increment()))) {
   }
 
+  // Four generators seeded as Pcg32::seed(state[i], stream[i]) would seed them.
+  static Pcg32x4 seeded(__m256i state, __m256i stream) {
+    const __m256i inc = _mm256_or_si256(_mm256_slli_epi64(stream, 1), _mm256_set1_epi64x(1));
+    // seed(): from 0, one step gives inc; plus the state, another step.
+    const __m256i first = _mm256_add_epi64(inc, state);
+    return Pcg32x4(_mm256_add_epi64(mul64_lanes(first, Pcg32::kMultiplier), inc), inc);
+  }
+
   // The next number of each generator, lane i of the result from generator i.
   __m128 next_floats() {
     const __m256i old = state_;
-    const __m256i m_lo =
-        _mm256_set1_epi64x(static_cast<long long>(Pcg32::kMultiplier & 0xffffffffu));
-    const __m256i m_hi = _mm256_set1_epi64x(static_cast<long long>(Pcg32::kMultiplier >> 32));
-    const __m256i low = _mm256_mul_epu32(old, m_lo);
-    const __m256i cross = _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(old, 32), m_lo),
-                                           _mm256_mul_epu32(old, m_hi));
-    state_ = _mm256_add_epi64(_mm256_add_epi64(low, _mm256_slli_epi64(cross, 32)), inc_);
+    state_ = _mm256_add_epi64(mul64_lanes(old, Pcg32::kMultiplier), inc_);
     // The output permutation on each lane's low 32 bits: xorshift, then a rotation by old >> 59.
     const __m256i x = _mm256_srli_epi64(_mm256_xor_si256(_mm256_srli_epi64(old, 18), old), 27);
     const __m256i rot = _mm256_srli_epi64(old, 59);
@@ -84,7 +100,17 @@ class Pcg32x4 {
     for (int i = 0; i < 4; ++i) g[i]->set_state(s[i]);
   }
 
+  // Writes states and increments into four generators (after seeded()).
+  void store_all(Pcg32* const g[4]) const {
+    alignas(32) uint64_t s[4], inc[4];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(s), state_);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(inc), inc_);
+    for (int i = 0; i < 4; ++i) g[i]->set_state_and_increment(s[i], inc[i]);
+  }
+
  private:
+  Pcg32x4(__m256i state, __m256i inc) : state_(state), inc_(inc) {}
+
   __m256i state_, inc_;
 };
 
@@ -94,6 +120,14 @@ inline uint64_t mix_seed(uint64_t x) {
   x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
   x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
   return x ^ (x >> 31);
+}
+
+// mix_seed of each 64-bit lane, bit for bit.
+inline __m256i mix_seed_lanes(__m256i x) {
+  x = _mm256_add_epi64(x, _mm256_set1_epi64x(static_cast<long long>(0x9e3779b97f4a7c15ULL)));
+  x = mul64_lanes(_mm256_xor_si256(x, _mm256_srli_epi64(x, 30)), 0xbf58476d1ce4e5b9ULL);
+  x = mul64_lanes(_mm256_xor_si256(x, _mm256_srli_epi64(x, 27)), 0x94d049bb133111ebULL);
+  return _mm256_xor_si256(x, _mm256_srli_epi64(x, 31));
 }
 
 }  // namespace tuneray

@@ -63,7 +63,18 @@ class SamplerBankOf final : public SamplerBank {
   explicit SamplerBankOf(const S& prototype) : prototype_(prototype) {}
   void start(size_t first, std::span<const PixelSampleId> ids, float* const* first4) override {
     if (samplers_.size() < first + ids.size()) samplers_.resize(first + ids.size(), prototype_);
-    for (size_t i = 0; i < ids.size(); ++i) {
+    size_t i = 0;
+    // Samplers that can seed four at once (their seeding is a chain of 64-bit multiplies).
+    if constexpr (requires(S * s[4], const PixelSampleId* id, float* const* out, size_t at) {
+                    S::start4(s, id, out, at);
+                  }) {
+      for (; i + 4 <= ids.size(); i += 4) {
+        S* s[4];
+        for (int j = 0; j < 4; ++j) s[j] = &samplers_[first + i + j];
+        S::start4(s, &ids[i], first4, i);
+      }
+    }
+    for (; i < ids.size(); ++i) {
       S& s = samplers_[first + i];
       s.start_pixel_sample(ids[i].x, ids[i].y, ids[i].index);
       const std::array<float, 4> u = s.S::next4();
@@ -87,10 +98,16 @@ class SamplerBankOf final : public SamplerBank {
         continue;
       }
       Pcg32x4 x(g);
-      for (int n = 0; n < 4 * quads; ++n) {
-        alignas(16) float u[4];
-        _mm_store_ps(u, x.next_floats());
-        for (int j = 0; j < 4; ++j) planes[n][positions[k + j]] = u[j];
+      // Four side by side (the usual case: most paths of a wave draw) take one store.
+      const uint32_t p0 = positions[k];
+      if (positions[k + 1] == p0 + 1 && positions[k + 2] == p0 + 2 && positions[k + 3] == p0 + 3) {
+        for (int n = 0; n < 4 * quads; ++n) _mm_storeu_ps(planes[n] + p0, x.next_floats());
+      } else {
+        for (int n = 0; n < 4 * quads; ++n) {
+          alignas(16) float u[4];
+          _mm_store_ps(u, x.next_floats());
+          for (int j = 0; j < 4; ++j) planes[n][positions[k + j]] = u[j];
+        }
       }
       x.store(g);
     }
@@ -119,6 +136,28 @@ class PcgSampler final : public Sampler {
   void start_pixel_sample(uint32_t x, uint32_t y, uint32_t index) override {
     uint64_t pixel = (static_cast<uint64_t>(y) << 32) | x;
     rng_.seed(mix_seed(pixel ^ mix_seed(seed_)), mix_seed(index + 0x9e3779b9ULL * (seed_ + 1)));
+  }
+  // start_pixel_sample(ids[i]) and next4() of s[i] for four samplers of one seed, in AVX2
+  // lanes: number j of s[i] goes to first4[j][at + i].
+  static void start4(PcgSampler* const s[4], const PixelSampleId* ids, float* const* first4,
+                     size_t at) {
+    const uint64_t seed = s[0]->seed_;
+    const __m256i pixel = _mm256_setr_epi64x(
+        static_cast<long long>((static_cast<uint64_t>(ids[0].y) << 32) | ids[0].x),
+        static_cast<long long>((static_cast<uint64_t>(ids[1].y) << 32) | ids[1].x),
+        static_cast<long long>((static_cast<uint64_t>(ids[2].y) << 32) | ids[2].x),
+        static_cast<long long>((static_cast<uint64_t>(ids[3].y) << 32) | ids[3].x));
+    const __m256i index =
+        _mm256_setr_epi64x(ids[0].index, ids[1].index, ids[2].index, ids[3].index);
+    const __m256i state = mix_seed_lanes(
+        _mm256_xor_si256(pixel, _mm256_set1_epi64x(static_cast<long long>(mix_seed(seed)))));
+    const __m256i stream = mix_seed_lanes(_mm256_add_epi64(
+        index, _mm256_set1_epi64x(static_cast<long long>(0x9e3779b9ULL * (seed + 1)))));
+    Pcg32x4 x = Pcg32x4::seeded(state, stream);
+    for (int j = 0; j < 4; ++j) _mm_storeu_ps(first4[j] + at, x.next_floats());
+    Pcg32* g[4];
+    for (int j = 0; j < 4; ++j) g[j] = &s[j]->rng_;
+    x.store_all(g);
   }
   float next1() override { return rng_.next_float(); }
   // The same four numbers as four next1() calls, without a virtual call per number.

@@ -186,24 +186,31 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
     local.rays += n;
 
     // The wave's random numbers, drawn together for the paths that will use them.
-    b.sampled.clear();
-    b.sampled_at.clear();
+    // Written unconditionally and kept by the count: which paths draw is as random as the
+    // paths themselves, so a branch here is mispredicted often.
+    b.sampled.resize(n);
+    b.sampled_at.resize(n);
+    size_t drawing = 0;
     for (size_t i = 0; i < n; ++i) {
-      if (!integrator_.needs_samples(wave, i, b.hits[i].valid())) continue;
-      b.sampled.push_back(wave.slot[i]);
-      b.sampled_at.push_back(static_cast<uint32_t>(i));
+      b.sampled[drawing] = wave.slot[i];
+      b.sampled_at[drawing] = static_cast<uint32_t>(i);
+      drawing += integrator_.needs_samples(wave, i, b.hits[i].valid()) ? 1 : 0;
     }
+
     float* u[kShadeSamples];
     for (int k = 0; k < kShadeSamples; ++k) {
       b.u[k].resize(wave.depth.size());
       u[k] = b.u[k].data();
     }
-    b.samplers->next4(b.sampled, b.sampled_at, kShadeSamples / 4, u);
+    b.samplers->next4(std::span(b.sampled).first(drawing), std::span(b.sampled_at).first(drawing),
+                      kShadeSamples / 4, u);
 
     // Shade, eight paths at a time; shadow rays are collected.
-    b.shadow_rays.clear();
-    b.shadow_owner.clear();
-    b.shadow_contribution.clear();
+    // At most one shadow ray per path: room for all, the count kept apart.
+    b.shadow_rays.resize(n);
+    b.shadow_owner.resize(n);
+    b.shadow_contribution.resize(n);
+    size_t shadows = 0;
     b.alive.resize((n + 7) / 8);
     // Hit data arrives while earlier hits are shaded: indices kFar hits ahead, vertices kNear
     // ahead (their indices prefetched kFar - kNear hits ago).
@@ -219,21 +226,20 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
         integrator_.prefetch_hit(b.hits[i], 1);
       b.alive[i0 / 8] =
           static_cast<uint8_t>(integrator_.shade8(wave, i0, count, &b.hits[i0], u, shadow));
-      for (int k = 0; k < count; ++k) {
-        if (!shadow[k].active) continue;
-        b.shadow_rays.push_back(shadow[k].ray);
-        b.shadow_owner.push_back(static_cast<uint32_t>(i0) + static_cast<uint32_t>(k));
-        b.shadow_contribution.push_back(shadow[k].contribution);
+      for (int k = 0; k < count; ++k) {  // kept by the count, as the samples above
+        b.shadow_rays[shadows] = shadow[k].ray;
+        b.shadow_owner[shadows] = static_cast<uint32_t>(i0) + static_cast<uint32_t>(k);
+        b.shadow_contribution[shadows] = shadow[k].contribution;
+        shadows += shadow[k].active ? 1 : 0;
       }
     }
 
     // Connect: the shadow rays, as one batch or one at a time.
-    const size_t shadows = b.shadow_rays.size();
     if (shadows > 0) {
       b.occluded.resize(shadows);
       t0 = profile ? now_ns() : 0;
       if (batched) {
-        accel.occluded_batch(b.shadow_rays, b.occluded);
+        accel.occluded_batch(std::span(b.shadow_rays).first(shadows), b.occluded);
       } else {
         for (size_t i = 0; i < shadows; ++i)
           b.occluded[i] = accel.occluded(b.shadow_rays[i]) ? 1 : 0;

@@ -110,7 +110,9 @@ template <class S>
 void expect_bank_is_lone_samplers(const S& prototype) {
   std::unique_ptr<SamplerBank> bank = prototype.make_bank();
   std::vector<PixelSampleId> ids;
-  for (uint32_t k = 0; k < 11; ++k) ids.push_back({k % 5, k / 5, k * 37 % 300});
+  // Coordinates with high bits too: the seeding mixes them as one 64-bit word.
+  for (uint32_t k = 0; k < 11; ++k)
+    ids.push_back({k % 5 + k * 390451573u, k / 5 + k * 2654435761u, k * 37 % 300});
   std::vector<float> first(4 * ids.size());
   float* first4[4];
   for (int j = 0; j < 4; ++j) first4[j] = first.data() + j * ids.size();
@@ -125,12 +127,14 @@ void expect_bank_is_lone_samplers(const S& prototype) {
   float* planes[8];
   for (int j = 0; j < 8; ++j) planes[j] = out.data() + j * ids.size();
   for (int round = 0; round < 5; ++round) {
-    // Every slot but the fourth, at shuffled positions.
+    // Every slot but the fourth, at reversed positions, or in odd rounds side by side (where
+    // four slots' numbers are stored together).
     std::vector<uint32_t> slots, positions;
     for (uint32_t k = 0; k < ids.size(); ++k) {
       if (k == 3) continue;
       slots.push_back(k);
-      positions.push_back(static_cast<uint32_t>(ids.size() - 1 - k));
+      positions.push_back(round % 2 ? static_cast<uint32_t>(slots.size() - 1)
+                                    : static_cast<uint32_t>(ids.size() - 1 - k));
     }
     bank->next4(slots, positions, 2, planes);
     for (size_t i = 0; i < slots.size(); ++i) {
