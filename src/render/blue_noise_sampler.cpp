@@ -15,10 +15,7 @@ BlueNoiseSampler::BlueNoiseSampler(uint64_t seed, const BlueNoiseTables& tables)
 }
 
 void BlueNoiseSampler::start_pixel_sample(uint32_t x, uint32_t y, uint32_t index) {
-  keys_ = &tables_->keys((x + offset_x_) % kTileSize, (y + offset_y_) % kTileSize);
-  index_ = index;
-  dim_ = 0;
-  in_table_ = index < kSamples;
+  start_tables(x, y, index);
   fallback_.start_pixel_sample(x, y, index);
 }
 

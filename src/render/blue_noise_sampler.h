@@ -20,6 +20,21 @@ class BlueNoiseSampler final : public Sampler {
   explicit BlueNoiseSampler(uint64_t seed = 0,
                             const BlueNoiseTables& tables = BlueNoiseTables::optimized());
   void start_pixel_sample(uint32_t x, uint32_t y, uint32_t index) override;
+  // start_pixel_sample(ids[i]) and next4() of s[i] for four samplers of one seed and tables
+  // (their fallbacks seeded in AVX2 lanes): number j goes to first4[j][at + i].
+  static void start4(BlueNoiseSampler* const s[4], const PixelSampleId* ids, float* const* first4,
+                     size_t at) {
+    PcgSampler* fallbacks[4];
+    for (int i = 0; i < 4; ++i) {
+      s[i]->start_tables(ids[i].x, ids[i].y, ids[i].index);
+      fallbacks[i] = &s[i]->fallback_;
+    }
+    PcgSampler::start4(fallbacks, ids);
+    for (int i = 0; i < 4; ++i) {
+      const std::array<float, 4> u = s[i]->next4();
+      for (int j = 0; j < 4; ++j) first4[j][at + i] = u[j];
+    }
+  }
   float next1() override;
   // Inline: the wavefront's sampler bank calls it for every path at every bounce.
   std::array<float, 4> next4() override {
@@ -52,6 +67,15 @@ class BlueNoiseSampler final : public Sampler {
   }
 
  private:
+  // start_pixel_sample but for the fallback's seeding.
+  void start_tables(uint32_t x, uint32_t y, uint32_t index) {
+    keys_ = &tables_->keys((x + offset_x_) % blue_noise::kTileSize,
+                           (y + offset_y_) % blue_noise::kTileSize);
+    index_ = index;
+    dim_ = 0;
+    in_table_ = index < blue_noise::kSamples;
+  }
+
   const BlueNoiseTables* tables_;
   uint32_t offset_x_, offset_y_;
   const PixelKeys* keys_ = nullptr;

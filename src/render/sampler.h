@@ -137,10 +137,9 @@ class PcgSampler final : public Sampler {
     uint64_t pixel = (static_cast<uint64_t>(y) << 32) | x;
     rng_.seed(mix_seed(pixel ^ mix_seed(seed_)), mix_seed(index + 0x9e3779b9ULL * (seed_ + 1)));
   }
-  // start_pixel_sample(ids[i]) and next4() of s[i] for four samplers of one seed, in AVX2
-  // lanes: number j of s[i] goes to first4[j][at + i].
-  static void start4(PcgSampler* const s[4], const PixelSampleId* ids, float* const* first4,
-                     size_t at) {
+  // start_pixel_sample(ids[i]) of s[i] for four samplers of one seed, in AVX2 lanes (the
+  // seeding is a chain of 64-bit multiplies per sampler).
+  static void start4(PcgSampler* const s[4], const PixelSampleId* ids) {
     const uint64_t seed = s[0]->seed_;
     const __m256i pixel = _mm256_setr_epi64x(
         static_cast<long long>((static_cast<uint64_t>(ids[0].y) << 32) | ids[0].x),
@@ -153,11 +152,19 @@ class PcgSampler final : public Sampler {
         _mm256_xor_si256(pixel, _mm256_set1_epi64x(static_cast<long long>(mix_seed(seed)))));
     const __m256i stream = mix_seed_lanes(_mm256_add_epi64(
         index, _mm256_set1_epi64x(static_cast<long long>(0x9e3779b9ULL * (seed + 1)))));
-    Pcg32x4 x = Pcg32x4::seeded(state, stream);
-    for (int j = 0; j < 4; ++j) _mm_storeu_ps(first4[j] + at, x.next_floats());
     Pcg32* g[4];
     for (int j = 0; j < 4; ++j) g[j] = &s[j]->rng_;
-    x.store_all(g);
+    Pcg32x4::seeded(state, stream).store_all(g);
+  }
+  // start4, then next4() of s[i]: number j goes to first4[j][at + i].
+  static void start4(PcgSampler* const s[4], const PixelSampleId* ids, float* const* first4,
+                     size_t at) {
+    start4(s, ids);
+    Pcg32* g[4];
+    for (int j = 0; j < 4; ++j) g[j] = &s[j]->rng_;
+    Pcg32x4 x(g);
+    for (int j = 0; j < 4; ++j) _mm_storeu_ps(first4[j] + at, x.next_floats());
+    x.store(g);
   }
   float next1() override { return rng_.next_float(); }
   // The same four numbers as four next1() calls, without a virtual call per number.
