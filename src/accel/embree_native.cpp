@@ -23,35 +23,9 @@ const char* quality_name(RTCBuildQuality q) {
   }
 }
 
-inline RTCRay to_rtc(const Ray& r) {
-  RTCRay out;
-  out.org_x = r.org.x;
-  out.org_y = r.org.y;
-  out.org_z = r.org.z;
-  out.tnear = r.tnear;
-  out.dir_x = r.dir.x;
-  out.dir_y = r.dir.y;
-  out.dir_z = r.dir.z;
-  out.time = 0;
-  out.tfar = r.tfar;
-  out.mask = 0xFFFFFFFFu;
-  out.id = 0;
-  out.flags = 0;
-  return out;
-}
-
-inline RTCRayHit to_rtc_hit(const Ray& r) {
-  RTCRayHit rh;
-  rh.ray = to_rtc(r);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
-
-// to_rtc and to_rtc_hit with whole-register moves: Ray's first 28 bytes are RTCRay's (origin,
-// tnear, direction); its tfar sits where RTCRay's time does. The batch calls copy every ray,
-// twice per bounce, so the copy is a measurable part of a frame.
+// A ray in Embree's layout, with whole-register moves: Ray's first 28 bytes are RTCRay's
+// (origin, tnear, direction); its tfar sits where RTCRay's time does. The batch calls copy every
+// ray, twice per bounce, so the copy is a measurable part of a frame.
 inline void store_rtc(const Ray& r, RTCRay& out) {
   static_assert(sizeof(Ray) == 32 && offsetof(Ray, tfar) == 28);
   static_assert(offsetof(RTCRay, time) == 28 && offsetof(RTCRay, flags) == 44);
@@ -149,7 +123,8 @@ BuildStats EmbreeNativeAccel::build(const GeometryView& geometry) {
 bool EmbreeNativeAccel::intersect(const Ray& ray, Hit& hit) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh = to_rtc_hit(ray);
+  RTCRayHit rh;
+  store_rtc_hit(ray, rh);
   rtcIntersect1(scene_, &context, &rh);
   return from_rtc_hit(rh, hit);
 }
@@ -157,7 +132,8 @@ bool EmbreeNativeAccel::intersect(const Ray& ray, Hit& hit) const {
 bool EmbreeNativeAccel::occluded(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay r = to_rtc(ray);
+  RTCRay r;
+  store_rtc(ray, r);
   rtcOccluded1(scene_, &context, &r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }

@@ -34,7 +34,6 @@ class Pcg32 {
   // The generator's state, for stepping several generators side by side (Pcg32x4).
   uint64_t state() const { return state_; }
   uint64_t increment() const { return inc_; }
-  void set_state(uint64_t state) { state_ = state; }
   void set_state_and_increment(uint64_t state, uint64_t increment) {
     state_ = state;
     inc_ = increment;
@@ -93,15 +92,9 @@ class Pcg32x4 {
     return _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(packed, 8)), _mm_set1_ps(0x1p-24f));
   }
 
-  // Writes the states back into the generators they came from.
+  // Writes the states (and increments) into four generators: those they came from, or after
+  // seeded() the ones to be seeded.
   void store(Pcg32* const g[4]) const {
-    alignas(32) uint64_t s[4];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(s), state_);
-    for (int i = 0; i < 4; ++i) g[i]->set_state(s[i]);
-  }
-
-  // Writes states and increments into four generators (after seeded()).
-  void store_all(Pcg32* const g[4]) const {
     alignas(32) uint64_t s[4], inc[4];
     _mm256_store_si256(reinterpret_cast<__m256i*>(s), state_);
     _mm256_store_si256(reinterpret_cast<__m256i*>(inc), inc_);

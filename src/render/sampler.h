@@ -134,37 +134,19 @@ class PcgSampler final : public Sampler {
  public:
   explicit PcgSampler(uint64_t seed = 0) : seed_(seed) {}
   void start_pixel_sample(uint32_t x, uint32_t y, uint32_t index) override {
-    uint64_t pixel = (static_cast<uint64_t>(y) << 32) | x;
-    rng_.seed(mix_seed(pixel ^ mix_seed(seed_)), mix_seed(index + 0x9e3779b9ULL * (seed_ + 1)));
+    rng_.seed(mix_seed(pixel_word(x, y) ^ pixel_key()), mix_seed(index + index_offset()));
   }
   // start_pixel_sample(ids[i]) of s[i] for four samplers of one seed, in AVX2 lanes (the
   // seeding is a chain of 64-bit multiplies per sampler).
   static void start4(PcgSampler* const s[4], const PixelSampleId* ids) {
-    const uint64_t seed = s[0]->seed_;
-    const __m256i pixel = _mm256_setr_epi64x(
-        static_cast<long long>((static_cast<uint64_t>(ids[0].y) << 32) | ids[0].x),
-        static_cast<long long>((static_cast<uint64_t>(ids[1].y) << 32) | ids[1].x),
-        static_cast<long long>((static_cast<uint64_t>(ids[2].y) << 32) | ids[2].x),
-        static_cast<long long>((static_cast<uint64_t>(ids[3].y) << 32) | ids[3].x));
-    const __m256i index =
-        _mm256_setr_epi64x(ids[0].index, ids[1].index, ids[2].index, ids[3].index);
-    const __m256i state = mix_seed_lanes(
-        _mm256_xor_si256(pixel, _mm256_set1_epi64x(static_cast<long long>(mix_seed(seed)))));
-    const __m256i stream = mix_seed_lanes(_mm256_add_epi64(
-        index, _mm256_set1_epi64x(static_cast<long long>(0x9e3779b9ULL * (seed + 1)))));
-    Pcg32* g[4];
-    for (int j = 0; j < 4; ++j) g[j] = &s[j]->rng_;
-    Pcg32x4::seeded(state, stream).store_all(g);
+    seeded4(s, ids).store(generators(s).data());
   }
   // start4, then next4() of s[i]: number j goes to first4[j][at + i].
   static void start4(PcgSampler* const s[4], const PixelSampleId* ids, float* const* first4,
                      size_t at) {
-    start4(s, ids);
-    Pcg32* g[4];
-    for (int j = 0; j < 4; ++j) g[j] = &s[j]->rng_;
-    Pcg32x4 x(g);
+    Pcg32x4 x = seeded4(s, ids);
     for (int j = 0; j < 4; ++j) _mm_storeu_ps(first4[j] + at, x.next_floats());
-    x.store(g);
+    x.store(generators(s).data());
   }
   float next1() override { return rng_.next_float(); }
   // The same four numbers as four next1() calls, without a virtual call per number.
@@ -181,6 +163,33 @@ class PcgSampler final : public Sampler {
   Pcg32* generator_for_next_draws() { return &rng_; }
 
  private:
+  // The seeding's inputs: the pixel as one word, mixed with a key of the seed; the sample index
+  // offset by the seed.
+  static uint64_t pixel_word(uint32_t x, uint32_t y) {
+    return (static_cast<uint64_t>(y) << 32) | x;
+  }
+  uint64_t pixel_key() const { return mix_seed(seed_); }
+  uint64_t index_offset() const { return 0x9e3779b9ULL * (seed_ + 1); }
+
+  static std::array<Pcg32*, 4> generators(PcgSampler* const s[4]) {
+    return {&s[0]->rng_, &s[1]->rng_, &s[2]->rng_, &s[3]->rng_};
+  }
+  // start_pixel_sample's seeding for four samplers of one seed, as four generators in lanes.
+  static Pcg32x4 seeded4(PcgSampler* const s[4], const PixelSampleId* ids) {
+    alignas(32) uint64_t pixel[4], index[4];
+    for (int j = 0; j < 4; ++j) {
+      pixel[j] = pixel_word(ids[j].x, ids[j].y);
+      index[j] = ids[j].index;
+    }
+    const auto lanes = [](const uint64_t* v) {
+      return _mm256_load_si256(reinterpret_cast<const __m256i*>(v));
+    };
+    const auto all = [](uint64_t v) { return _mm256_set1_epi64x(static_cast<long long>(v)); };
+    return Pcg32x4::seeded(
+        mix_seed_lanes(_mm256_xor_si256(lanes(pixel), all(s[0]->pixel_key()))),
+        mix_seed_lanes(_mm256_add_epi64(lanes(index), all(s[0]->index_offset()))));
+  }
+
   uint64_t seed_;
   Pcg32 rng_;
 };
