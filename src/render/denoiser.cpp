@@ -112,7 +112,9 @@ std::vector<uint8_t> near_emitters(const DenoiseFeatures& f) {
 // The guides as planes of floats (the tap loop reads them with unit stride).
 struct GuidePlanes {
   FloatPlane nx, ny, nz, ar, ag, ab;
-  explicit GuidePlanes(const DenoiseFeatures& f) {
+  // Visibility, and its noise (deviations^2 x variance); 1 and 0 without the guide.
+  FloatPlane vis, vis_noise;
+  GuidePlanes(const DenoiseFeatures& f, const DenoiseParams& params) {
     for (const Vec3f& n : f.normal) {
       nx.push_back(n.x);
       ny.push_back(n.y);
@@ -122,6 +124,15 @@ struct GuidePlanes {
       ar.push_back(a.x);
       ag.push_back(a.y);
       ab.push_back(a.z);
+    }
+    const size_t pixels = f.albedo.size();
+    const float k2 = params.visibility_noise_deviations * params.visibility_noise_deviations;
+    vis.assign(pixels, 1.0f);
+    vis_noise.assign(pixels, 0.0f);
+    if (f.visibility.empty()) return;
+    for (size_t p = 0; p < pixels; ++p) {
+      vis[p] = f.visibility[p];
+      vis_noise[p] = k2 * f.visibility_variance[p];
     }
   }
 };
@@ -196,12 +207,13 @@ struct RowSums {
 
 // One row's worth of the planes, from some first pixel on.
 struct Planes {
-  const float *nx, *ny, *nz, *ar, *ag, *ab, *lum, *noise, *r, *g, *b, *variance, *valid;
+  const float *nx, *ny, *nz, *ar, *ag, *ab, *vis, *vis_noise, *lum, *noise, *r, *g, *b, *variance,
+      *valid;
 };
 
 // Adds one tap to the sums of pixels [x0, x1) of a row; `q` starts at pixel x0's tap.
-void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, const Planes& c,
-                     const Planes& q, RowSums& s) {
+void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, float visibility_sigma2,
+                     const Planes& c, const Planes& q, RowSums& s) {
   const int n = x1 - x0;
   const float* __restrict cnx = c.nx + x0;
   const float* __restrict cny = c.ny + x0;
@@ -210,6 +222,10 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, cons
   const float* __restrict cag = c.ag + x0;
   const float* __restrict cab = c.ab + x0;
   const float* __restrict clum = c.lum + x0;
+  const float* __restrict cvis = c.vis + x0;
+  const float* __restrict cvn = c.vis_noise + x0;
+  const float* __restrict qvis = q.vis;
+  const float* __restrict qvn = q.vis_noise;
   const float* __restrict qnx = q.nx;
   const float* __restrict qny = q.ny;
   const float* __restrict qnz = q.nz;
@@ -237,6 +253,7 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, cons
   const __m256 zero = _mm256_setzero_ps(), max_exponent = _mm256_set1_ps(kMaxExponent);
   const __m256 sign = _mm256_set1_ps(-0.0f), k = _mm256_set1_ps(kernel);
   const __m256 inv_a2 = _mm256_set1_ps(inv_albedo_sigma2), tiny = _mm256_set1_ps(kTinyNoise);
+  const __m256 vis_s2 = _mm256_set1_ps(visibility_sigma2);
   int x = 0;
   for (; x + 8 <= n; x += 8) {
     auto at = [x](const float* p) { return _mm256_loadu_ps(p + x); };
@@ -249,10 +266,14 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, cons
     __m256 albedo = _mm256_mul_ps(dr, dr);
     albedo = _mm256_fmadd_ps(dg, dg, albedo);
     albedo = _mm256_mul_ps(_mm256_fmadd_ps(db, db, albedo), inv_a2);
+    const __m256 dv = _mm256_sub_ps(at(cvis), at(qvis));
+    const __m256 vis_spread = _mm256_add_ps(_mm256_add_ps(at(cvn), at(qvn)), vis_s2);
+    const __m256 visibility = _mm256_mul_ps(_mm256_mul_ps(dv, dv), _mm256_rcp_ps(vis_spread));
     const __m256 dl = _mm256_andnot_ps(sign, _mm256_sub_ps(at(clum), at(qlum)));
     const __m256 noise = _mm256_add_ps(_mm256_add_ps(at(cnoise), at(qnoise)), tiny);
     const __m256 luminance = _mm256_mul_ps(_mm256_mul_ps(dl, _mm256_rsqrt_ps(noise)), at(counts));
-    const __m256 exponent = _mm256_min_ps(_mm256_add_ps(luminance, albedo), max_exponent);
+    const __m256 exponent =
+        _mm256_min_ps(_mm256_add_ps(_mm256_add_ps(luminance, albedo), visibility), max_exponent);
     const __m256 wq =
         _mm256_mul_ps(_mm256_mul_ps(k, wn), _mm256_mul_ps(at(qvalid), exp_neg8(exponent)));
     auto add = [x](float* sum, __m256 v) {
@@ -268,8 +289,10 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, cons
     float wn = std::max(0.0f, cnx[x] * qnx[x] + cny[x] * qny[x] + cnz[x] * qnz[x]);
     for (int i = 0; i < 7; ++i) wn *= wn;  // ^128
     const float dr = car[x] - qar[x], dg = cag[x] - qag[x], db = cab[x] - qab[x];
+    const float dv = cvis[x] - qvis[x];
     const float exponent =
         (dr * dr + dg * dg + db * db) * inv_albedo_sigma2 +
+        dv * dv / (cvn[x] + qvn[x] + visibility_sigma2) +
         std::abs(clum[x] - qlum[x]) / std::sqrt(cnoise[x] + qnoise[x] + kTinyNoise) * counts[x];
     // Written so that NaN (inf - inf) also becomes the largest exponent, as in the lanes above.
     const float bounded = exponent < kMaxExponent ? exponent : kMaxExponent;
@@ -285,6 +308,7 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, cons
 void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const FloatPlane& noise,
                  const GuidePlanes& guide, int w, int h, int step, const DenoiseParams& params) {
   const float inv_albedo_sigma2 = 1.0f / (params.sigma_albedo * params.sigma_albedo);
+  const float visibility_sigma2 = params.sigma_visibility * params.sigma_visibility;
   for_rows(h, [&](int y0, int y1) {
     RowSums s(w);
     for (int y = y0; y < y1; ++y) {
@@ -307,6 +331,8 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
                           guide.ar.data() + row,
                           guide.ag.data() + row,
                           guide.ab.data() + row,
+                          guide.vis.data() + row,
+                          guide.vis_noise.data() + row,
                           lum.data() + row,
                           noise.data() + row,
                           nullptr,
@@ -322,12 +348,15 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
           const int x0 = std::max(0, -off), x1 = std::min(w, w - off);
           const float kernel = kB3[std::abs(ky)] * kB3[std::abs(kx)];
           const size_t q0 = static_cast<size_t>(yy) * w + (off + x0);  // pixel x0's tap
-          const Planes tap{guide.nx.data() + q0, guide.ny.data() + q0, guide.nz.data() + q0,
-                           guide.ar.data() + q0, guide.ag.data() + q0, guide.ab.data() + q0,
-                           lum.data() + q0,      noise.data() + q0,    in.r.data() + q0,
-                           in.g.data() + q0,     in.b.data() + q0,     in.variance.data() + q0,
+          const Planes tap{guide.nx.data() + q0,  guide.ny.data() + q0,
+                           guide.nz.data() + q0,  guide.ar.data() + q0,
+                           guide.ag.data() + q0,  guide.ab.data() + q0,
+                           guide.vis.data() + q0, guide.vis_noise.data() + q0,
+                           lum.data() + q0,       noise.data() + q0,
+                           in.r.data() + q0,      in.g.data() + q0,
+                           in.b.data() + q0,      in.variance.data() + q0,
                            in.valid.data() + q0};
-          accumulate_taps(x0, x1, kernel, inv_albedo_sigma2, centre, tap, s);
+          accumulate_taps(x0, x1, kernel, inv_albedo_sigma2, visibility_sigma2, centre, tap, s);
         }
       }
       for (int x = 0; x < w; ++x) {
@@ -374,16 +403,23 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
   const int w = in.color.width(), h = in.color.height();
   const size_t pixels = static_cast<size_t>(w) * h;
   if (f.width != w || f.height != h || f.albedo.size() != pixels || f.normal.size() != pixels ||
-      (!f.emitter.empty() && f.emitter.size() != pixels) || in.variance.size() != pixels ||
-      in.has_estimate.size() != pixels)
+      (!f.emitter.empty() && f.emitter.size() != pixels) ||
+      (!f.visibility.empty() &&
+       (f.visibility.size() != pixels || f.visibility_variance.size() != pixels)) ||
+      in.variance.size() != pixels || in.has_estimate.size() != pixels)
     throw std::invalid_argument("denoise: image, variance and features differ in size");
   if (params.iterations < 0 || params.iterations > kMostIterations)
     throw std::invalid_argument("denoise: iterations must be in [0, " +
                                 std::to_string(kMostIterations) + "]");
+  if (!(params.sigma_visibility > 0) || !std::isfinite(params.sigma_visibility) ||
+      !(params.visibility_noise_deviations >= 0))
+    throw std::invalid_argument(
+        "denoise: sigma_visibility must be positive and finite, "
+        "visibility_noise_deviations non-negative");
 
   const FloatPlane variance = completed_variance(in);
   const std::vector<uint8_t> kept = near_emitters(f);
-  const GuidePlanes guide(f);
+  const GuidePlanes guide(f, params);
   Layer a(pixels);
   for (size_t p = 0; p < pixels; ++p) {
     const Color& c = in.color.data()[p];

@@ -22,9 +22,12 @@ struct DenoiseParams {
   float sigma_luminance = 4;  // luminance difference allowed, in standard deviations
   int normal_squarings = 7;   // normal weight max(0, n.n')^(2^this): 128 as in SVGF
   float sigma_albedo = 0.1f;  // RGB distance at which the albedo weight is 1/e
+  // Direct-light visibility difference at which its weight is 1/e when the guide is noise-free;
+  // the guide's own noise (this many standard deviations of both pixels) widens it, since in
+  // soft shadows a pixel's few light samples make visibility noisy.
+  float sigma_visibility = 0.2f;
+  float visibility_noise_deviations = 4.0f;
 };
-
-// The normal weight is max(0, n.n')^128, as in SVGF.
 
 // The filter's input: an estimate per pixel and how noisy it is.
 struct NoisyImage {

@@ -4,6 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "math/rng.h"
+#include "render/light_sampler.h"
 
 #include "render/surface.h"
 
@@ -36,6 +41,10 @@ struct Feature {
   Color albedo{0.0f};
   Vec3f normal{0.0f};
   bool emitter = false;
+  // A surface that reflects light (not sky, a light or glass): its direct light's visibility
+  // is a guide there. `position` and `geometric_normal` (facing the viewer) place its shadow rays.
+  bool lit_surface = false;
+  Vec3f position{0.0f}, geometric_normal{0.0f};
 };
 
 Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray) {
@@ -48,10 +57,15 @@ Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray) {
     if (dot(n, ray.dir) > 0) n = -n;
     if (si.material->is_emissive()) return {tint, n, true};
     BsdfParams bsdf = resolve_bsdf(scene, si);
-    if (bsdf.type != MaterialType::kMirror || bounce == kMaxMirrorBounces)
-      return {tint * albedo_of(bsdf), n};
-    tint *= bsdf.specular_color;
     Vec3f ng = dot(si.geometric_normal, ray.dir) > 0 ? -si.geometric_normal : si.geometric_normal;
+    if (bsdf.type != MaterialType::kMirror || bounce == kMaxMirrorBounces)
+      return {tint * albedo_of(bsdf),
+              n,
+              false,
+              bsdf.type != MaterialType::kDielectric,
+              si.position,
+              ng};
+    tint *= bsdf.specular_color;
     Vec3f reflected = ray.dir - n * (2.0f * dot(ray.dir, n));
     if (dot(reflected, ng) <= 0) return {tint, n};  // the shading normal sent it inside
     Ray next;
@@ -59,6 +73,61 @@ Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray) {
     next.dir = reflected;
     ray = next;
   }
+}
+
+// The share of the direct light's unshadowed contribution at a surface that is not occluded,
+// from `samples` next-event samples: sums of weights and of visible weights (and of their
+// squares, for the variance) go into `sums`. The weight is the sample's unshadowed irradiance
+// estimate (luminance x cosine / pdf), so bright lights count for more, as in the image.
+struct VisibilitySums {
+  static constexpr int kMost = kFeatureRaysPerSide * kFeatureRaysPerSide * kVisibilitySamplesPerRay;
+  std::array<float, kMost> weight{}, visible{};  // visible: 1, occluded: 0
+  int count = 0;
+  int lit_rays = 0;  // feature rays that ended on a surface that reflects light
+};
+
+void add_visibility(const LightSampler& lights, const Accel& accel, const Feature& at, Pcg32& rng,
+                    VisibilitySums& sums) {
+  ++sums.lit_rays;
+  for (int k = 0; k < kVisibilitySamplesPerRay; ++k) {
+    // Stratified light choice: the ray's samples spread over the selection's CDF.
+    const float u_select = (k + rng.next_float()) / kVisibilitySamplesPerRay;
+    const LightSample ls =
+        lights.sample(at.position, u_select, {rng.next_float(), rng.next_float()});
+    const float cosine = dot(ls.wi, at.normal);
+    float weight = 0;
+    if (ls.pdf > 0 && cosine > 0 && dot(ls.wi, at.geometric_normal) > 0)
+      weight = luminance(ls.radiance) * cosine / ls.pdf;
+    if (!(weight > 0) || !std::isfinite(weight)) continue;  // no light to block
+    Ray shadow;
+    shadow.org = offset_ray_origin(at.position, at.geometric_normal, ls.wi);
+    shadow.dir = ls.wi;
+    shadow.tfar = ls.distance < kInf ? ls.distance * (1.0f - 1e-4f) : kInf;
+    sums.weight[sums.count] = weight;
+    sums.visible[sums.count] = accel.occluded(shadow) ? 0.0f : 1.0f;
+    ++sums.count;
+  }
+}
+
+// The pixel's visibility: the surfaces' weighted share of visible samples (a ratio estimate)
+// over the share of its feature rays that saw a surface, 1 over the rest.
+void set_visibility(const VisibilitySums& sums, int rays, DenoiseFeatures& f, size_t p) {
+  double total = 0, visible = 0;
+  for (int i = 0; i < sums.count; ++i) {
+    total += sums.weight[i];
+    visible += sums.weight[i] * sums.visible[i];
+  }
+  const double share = total > 0 ? visible / total : 0.0;
+  // The ratio estimate's variance to first order: sum of w^2 (v - share)^2 / (sum of w)^2.
+  double spread = 0;
+  for (int i = 0; i < sums.count; ++i) {
+    const double d = sums.weight[i] * (sums.visible[i] - share);
+    spread += d * d;
+  }
+  const double surfaces = static_cast<double>(sums.lit_rays) / rays;
+  f.visibility[p] = static_cast<float>(surfaces * share + (1.0 - surfaces));
+  f.visibility_variance[p] =
+      total > 0 ? static_cast<float>(surfaces * surfaces * spread / (total * total)) : 0.0f;
 }
 
 }  // namespace
@@ -75,6 +144,11 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
   f.albedo.assign(pixels, Color(0.0f));
   f.normal.assign(pixels, Vec3f(0.0f));
   f.emitter.assign(pixels, 0);
+  const LightSampler& lights = renderer.integrator().lights();
+  if (!lights.empty()) {
+    f.visibility.assign(pixels, 1.0f);
+    f.visibility_variance.assign(pixels, 0.0f);
+  }
   constexpr int kSide = kFeatureRaysPerSide;
   constexpr float kWeight = 1.0f / (kSide * kSide);
   tbb::parallel_for(tbb::blocked_range<int>(0, s.height), [&](const tbb::blocked_range<int>& r) {
@@ -83,6 +157,10 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
         Color albedo(0.0f);
         Vec3f normal(0.0f);
         bool emitter = false;
+        size_t p = static_cast<size_t>(y) * s.width + x;
+        // Seeded by the pixel: the guide is the same on every run and from every scheduler.
+        Pcg32 rng(p, 0x9e3779b97f4a7c15ULL);
+        VisibilitySums visibility;
         for (int j = 0; j < kSide; ++j)
           for (int i = 0; i < kSide; ++i) {
             Vec2f at{x + (i + 0.5f) / kSide, y + (j + 0.5f) / kSide};
@@ -90,8 +168,10 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
             albedo += one.albedo * kWeight;
             normal += one.normal;
             emitter = emitter || one.emitter;
+            if (one.lit_surface && !lights.empty())
+              add_visibility(lights, accel, one, rng, visibility);
           }
-        size_t p = static_cast<size_t>(y) * s.width + x;
+        if (!lights.empty()) set_visibility(visibility, kSide * kSide, f, p);
         f.albedo[p] = albedo;
         f.emitter[p] = emitter;
         float len = length(normal);

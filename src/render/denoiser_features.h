@@ -24,7 +24,17 @@ struct DenoiseFeatures {
   // the surface's reflected light but an emitter's, often partly covering the pixel. Empty:
   // none anywhere.
   std::vector<uint8_t> emitter;
+  // How much of the direct light reaches the first surface: the fraction of its next-event
+  // samples' unshadowed contribution that is not occluded, in [0, 1], and that fraction's
+  // variance (of the mean over the pixel's samples). Shadow edges, which neither albedo nor
+  // normal shows, are edges here; hard ones (point lights, small lights) are noise-free.
+  // Where no light reaches a surface it is 0; sky, lights and glass have 1. Empty: the scene
+  // has no lights, so no guide.
+  std::vector<float> visibility, visibility_variance;
 };
+
+// Light samples per feature ray for the visibility guide (kFeatureRaysPerSide^2 rays a pixel).
+inline constexpr int kVisibilitySamplesPerRay = 2;
 
 // Camera rays per pixel side for the features (antialiased edges): 2 x 2 stratified.
 inline constexpr int kFeatureRaysPerSide = 2;

@@ -10,11 +10,13 @@
 #include "accel/embree_native.h"
 #include "denoise_test_images.h"
 #include "image/metrics.h"
+#include "render/camera.h"
 #include "render/denoiser.h"
 #include "render/denoiser_features.h"
 #include "render/denoiser_frame.h"
 #include "render/sampler.h"
 #include "scene/builtins.h"
+#include "scene/mesh_data.h"
 
 namespace tuneray {
 namespace {
@@ -98,6 +100,56 @@ TEST(Denoiser, NormalEdgeSurvives) {
   expect_edge_survives(f, clean);
 }
 
+// A shadow's edge: one albedo and one normal on both sides, so only the visibility guide shows
+// it. The noise is strong against the step (the luminance weight alone would keep a step of
+// many sigma): the guide keeps the edge pixels on their side, and without it they blur.
+TEST(Denoiser, ShadowEdgeSurvivesThroughTheVisibilityGuideAlone) {
+  DenoiseFeatures f = flat_features(Color(1.0f));
+  f.visibility.assign(f.albedo.size(), 1.0f);
+  f.visibility_variance.assign(f.albedo.size(), 0.0f);
+  Image clean(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool shadow = x < kW / 2;
+      f.visibility[static_cast<size_t>(y) * kW + x] = shadow ? 0.0f : 1.0f;
+      clean.at(x, y) = Color(shadow ? 0.2f : 0.5f);  // indirect light only in the shadow
+    }
+  const float sigma = 0.15f, tolerance = 0.05f;
+  const NoisyImage noisy = known_variance(with_noise(clean, sigma, 11), sigma * sigma);
+  auto off_side = [&](const Image& out) {  // edge pixels further than `tolerance` from their side
+    int count = 0;
+    for (int y = 2; y < kH - 2; ++y)
+      for (int x : {kW / 2 - 1, kW / 2})
+        count += std::abs(luminance(out.at(x, y)) - luminance(clean.at(x, y))) > tolerance;
+    return count;
+  };
+  EXPECT_EQ(off_side(denoise(noisy, f)), 0);
+  f.visibility.clear();
+  f.visibility_variance.clear();
+  EXPECT_GT(off_side(denoise(noisy, f)), kH / 2);
+}
+
+// In soft shadows a pixel's few light samples make the guide noisy: its variance must let the
+// filter average across that noise instead of stopping at every pixel.
+TEST(Denoiser, ANoisyVisibilityGuideWithItsVarianceStillFilters) {
+  const float sigma = 0.1f;
+  Image clean(kW, kH, Color(0.4f));
+  const NoisyImage noisy = known_variance(with_noise(clean, sigma, 7), sigma * sigma);
+  DenoiseFeatures f = flat_features();
+  const double unguided = compare_images(denoise(noisy, f), clean).rmse;
+  // A penumbra at half visibility, estimated per pixel from 8 samples (variance 0.25 / 8).
+  std::mt19937 rng(5);
+  std::binomial_distribution<int> visible(8, 0.5);
+  for (size_t p = 0; p < f.albedo.size(); ++p)
+    f.visibility.push_back(static_cast<float>(visible(rng)) / 8.0f);
+  f.visibility_variance.assign(f.albedo.size(), 0.25f / 8.0f);
+  const double with_variance = compare_images(denoise(noisy, f), clean).rmse;
+  std::fill(f.visibility_variance.begin(), f.visibility_variance.end(), 0.0f);
+  const double as_if_exact = compare_images(denoise(noisy, f), clean).rmse;
+  EXPECT_LT(with_variance, 1.2 * unguided) << unguided;
+  EXPECT_GT(as_if_exact, 1.5 * unguided) << unguided;
+}
+
 TEST(Denoiser, PixelsWithoutSamplesTakeTheirNeighboursValue) {
   Image image(kW, kH, Color(0.25f));
   NoisyImage in = known_variance(image, 0.001f);
@@ -113,6 +165,79 @@ TEST(Denoiser, PixelsWithoutSamplesTakeTheirNeighboursValue) {
 TEST(Denoiser, SizeMismatchIsRefused) {
   Image image(kW + 1, kH);
   EXPECT_THROW(denoise(known_variance(image, 0.0f), flat_features()), std::invalid_argument);
+  DenoiseFeatures f = flat_features();
+  f.visibility.assign(f.albedo.size() - 1, 1.0f);
+  f.visibility_variance.assign(f.albedo.size(), 0.0f);
+  Image fits(kW, kH);
+  EXPECT_THROW(denoise(known_variance(fits, 0.0f), f), std::invalid_argument);
+  for (float bad : {0.0f, -1.0f, NAN, INFINITY}) {
+    DenoiseParams params;
+    params.sigma_visibility = bad;
+    EXPECT_THROW(denoise(known_variance(fits, 0.0f), flat_features(), params),
+                 std::invalid_argument)
+        << bad;
+  }
+}
+
+// A point light over a floor, a square occluder between them: its shadow on the floor is the
+// square scaled by 2 from the light. Where all of a pixel's feature rays reach the floor well
+// inside that shadow, visibility is exactly 0; well outside it, exactly 1; noise-free both.
+TEST(DenoiseFeatures, VisibilityIsExactUnderAPointLight) {
+  Scene scene;
+  const uint32_t grey = add_material(scene, Material{});
+  add_mesh(scene, "floor", make_quad({-4, 0, -4}, {8, 0, 0}, {0, 0, 8}, {0, 1, 0}), grey);
+  add_mesh(scene, "occluder", make_quad({-0.5f, 1, -0.5f}, {1, 0, 0}, {0, 0, 1}, {0, 1, 0}), grey);
+  scene.point_lights.push_back({Vec3f(0, 2, 0), Color(5.0f)});
+  CameraDesc view;
+  view.position = {0, 5, 6};
+  view.target = {0, 0, 0};
+  scene.cameras.push_back(view);
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 48;
+  PcgSampler sampler(1);
+  const TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, sampler);
+  const DenoiseFeatures f = render_denoise_features(renderer);
+  ASSERT_EQ(f.visibility.size(), static_cast<size_t>(64 * 48));
+
+  // Where the feature rays land, from the plane equations (not the accelerator).
+  const Camera camera(view, settings.width, settings.height);
+  auto on_floor = [&](int x, int y, float lo, float hi) {  // every ray's |x|, |z| in [lo, hi]
+    for (int j = 0; j < kFeatureRaysPerSide; ++j)
+      for (int i = 0; i < kFeatureRaysPerSide; ++i) {
+        const Vec2f at{x + (i + 0.5f) / kFeatureRaysPerSide, y + (j + 0.5f) / kFeatureRaysPerSide};
+        const Ray r = camera.generate_ray(at, {0.5f, 0.5f});
+        const float t_occluder = (1 - r.org.y) / r.dir.y;
+        const Vec3f o = r.org + r.dir * t_occluder;
+        if (t_occluder > 0 && std::abs(o.x) <= 0.5f && std::abs(o.z) <= 0.5f) return false;
+        const Vec3f p = r.org + r.dir * (-r.org.y / r.dir.y);
+        const float m = std::max(std::abs(p.x), std::abs(p.z));
+        if (r.dir.y >= 0 || m < lo || m > hi) return false;
+      }
+    return true;
+  };
+  int shadowed = 0, lit = 0;
+  for (int y = 0; y < settings.height; ++y)
+    for (int x = 0; x < settings.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * settings.width + x;
+      EXPECT_GE(f.visibility[p], 0.0f);
+      EXPECT_LE(f.visibility[p], 1.0f);
+      EXPECT_GE(f.visibility_variance[p], 0.0f);
+      if (on_floor(x, y, 0.0f, 0.9f)) {
+        ++shadowed;
+        EXPECT_EQ(f.visibility[p], 0.0f) << x << "," << y;
+        EXPECT_EQ(f.visibility_variance[p], 0.0f) << x << "," << y;
+      } else if (on_floor(x, y, 1.1f, 3.9f)) {
+        ++lit;
+        EXPECT_EQ(f.visibility[p], 1.0f) << x << "," << y;
+        EXPECT_EQ(f.visibility_variance[p], 0.0f) << x << "," << y;
+      }
+    }
+  EXPECT_GT(shadowed, 20);
+  EXPECT_GT(lit, 200);
 }
 
 TEST(Denoiser, DenoiseIsABiasedSwitchThatGroundTruthsKeepOff) {
