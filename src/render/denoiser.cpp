@@ -213,7 +213,7 @@ struct Planes {
 
 // Adds one tap to the sums of pixels [x0, x1) of a row; `q` starts at pixel x0's tap.
 void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, float visibility_sigma2,
-                     const Planes& c, const Planes& q, RowSums& s) {
+                     int normal_squarings, const Planes& c, const Planes& q, RowSums& s) {
   const int n = x1 - x0;
   const float* __restrict cnx = c.nx + x0;
   const float* __restrict cny = c.ny + x0;
@@ -260,7 +260,7 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, floa
     __m256 wn = _mm256_mul_ps(at(cnx), at(qnx));
     wn = _mm256_fmadd_ps(at(cny), at(qny), wn);
     wn = _mm256_max_ps(_mm256_fmadd_ps(at(cnz), at(qnz), wn), zero);
-    for (int i = 0; i < 7; ++i) wn = _mm256_mul_ps(wn, wn);  // ^128
+    for (int i = 0; i < normal_squarings; ++i) wn = _mm256_mul_ps(wn, wn);
     const __m256 dr = _mm256_sub_ps(at(car), at(qar)), dg = _mm256_sub_ps(at(cag), at(qag)),
                  db = _mm256_sub_ps(at(cab), at(qab));
     __m256 albedo = _mm256_mul_ps(dr, dr);
@@ -287,7 +287,7 @@ void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, floa
   }
   for (; x < n; ++x) {
     float wn = std::max(0.0f, cnx[x] * qnx[x] + cny[x] * qny[x] + cnz[x] * qnz[x]);
-    for (int i = 0; i < 7; ++i) wn *= wn;  // ^128
+    for (int i = 0; i < normal_squarings; ++i) wn *= wn;
     const float dr = car[x] - qar[x], dg = cag[x] - qag[x], db = cab[x] - qab[x];
     const float dv = cvis[x] - qvis[x];
     const float exponent =
@@ -356,7 +356,8 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
                            in.r.data() + q0,      in.g.data() + q0,
                            in.b.data() + q0,      in.variance.data() + q0,
                            in.valid.data() + q0};
-          accumulate_taps(x0, x1, kernel, inv_albedo_sigma2, visibility_sigma2, centre, tap, s);
+          accumulate_taps(x0, x1, kernel, inv_albedo_sigma2, visibility_sigma2,
+                          params.normal_squarings, centre, tap, s);
         }
       }
       for (int x = 0; x < w; ++x) {
@@ -411,6 +412,9 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
   if (params.iterations < 0 || params.iterations > kMostIterations)
     throw std::invalid_argument("denoise: iterations must be in [0, " +
                                 std::to_string(kMostIterations) + "]");
+  // Past 32 squarings (an exponent of 2^32) every pair of distinct normals weighs 0 anyway.
+  if (params.normal_squarings < 0 || params.normal_squarings > 32)
+    throw std::invalid_argument("denoise: normal_squarings must be in [0, 32]");
   if (!(params.sigma_visibility > 0) || !std::isfinite(params.sigma_visibility) ||
       !(params.visibility_noise_deviations >= 0))
     throw std::invalid_argument(

@@ -129,6 +129,34 @@ TEST(Denoiser, ShadowEdgeSurvivesThroughTheVisibilityGuideAlone) {
   EXPECT_GT(off_side(denoise(noisy, f)), kH / 2);
 }
 
+// Two walls 26 degrees apart (n.n' = 0.9): the normal weight 0.9^128 keeps them apart, the
+// weight 0.9^1 of normal_squarings = 0 lets the noise-level step blur.
+TEST(Denoiser, TheNormalWeightsSharpnessIsItsSquarings) {
+  DenoiseFeatures f = flat_features(Color(1.0f));
+  Image clean(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool left = x < kW / 2;
+      f.normal[static_cast<size_t>(y) * kW + x] =
+          left ? Vec3f(0, 0, 1) : Vec3f(0.43588989f, 0, 0.9f);
+      clean.at(x, y) = Color(left ? 0.5f : 0.2f);
+    }
+  const float sigma = 0.15f, tolerance = 0.05f;
+  const NoisyImage noisy = known_variance(with_noise(clean, sigma, 11), sigma * sigma);
+  auto off_side = [&](int squarings) {
+    DenoiseParams params;
+    params.normal_squarings = squarings;
+    const Image out = denoise(noisy, f, params);
+    int count = 0;
+    for (int y = 2; y < kH - 2; ++y)
+      for (int x : {kW / 2 - 1, kW / 2})
+        count += std::abs(luminance(out.at(x, y)) - luminance(clean.at(x, y))) > tolerance;
+    return count;
+  };
+  EXPECT_EQ(off_side(DenoiseParams{}.normal_squarings), 0);
+  EXPECT_GT(off_side(0), kH / 2);
+}
+
 // In soft shadows a pixel's few light samples make the guide noisy: its variance must let the
 // filter average across that noise instead of stopping at every pixel.
 TEST(Denoiser, ANoisyVisibilityGuideWithItsVarianceStillFilters) {
@@ -170,6 +198,13 @@ TEST(Denoiser, SizeMismatchIsRefused) {
   f.visibility_variance.assign(f.albedo.size(), 0.0f);
   Image fits(kW, kH);
   EXPECT_THROW(denoise(known_variance(fits, 0.0f), f), std::invalid_argument);
+  for (int squarings : {-1, 33}) {
+    DenoiseParams params;
+    params.normal_squarings = squarings;
+    EXPECT_THROW(denoise(known_variance(fits, 0.0f), flat_features(), params),
+                 std::invalid_argument)
+        << squarings;
+  }
   for (float bad : {0.0f, -1.0f, NAN, INFINITY}) {
     DenoiseParams params;
     params.sigma_visibility = bad;
