@@ -68,8 +68,9 @@ uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, ui
       for (uint32_t m = rays; m; m &= m - 1) {
         const int i = __builtin_ctz(m);
         alignas(32) float dist[N];
-        const int hit = box_test<typename Planes::L, false>(nears, fars, ray[i], ray[i].tfar, dist);
-        if (hit) entered.add(hit, 1u << i);
+        // Added without a branch: whether a ray enters any child is a coin flip to the predictor.
+        entered.add(box_test<typename Planes::L, false>(nears, fars, ray[i], ray[i].tfar, dist),
+                    1u << i);
       }
       int children = entered.children;
       if (const int leaves = children & leaf_children<N>(node.child)) {
