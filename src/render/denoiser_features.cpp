@@ -9,7 +9,6 @@
 
 #include "math/rng.h"
 #include "render/light_sampler.h"
-
 #include "render/surface.h"
 
 namespace tuneray {
@@ -75,10 +74,9 @@ Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray) {
   }
 }
 
-// The share of the direct light's unshadowed contribution at a surface that is not occluded,
-// from `samples` next-event samples: sums of weights and of visible weights (and of their
-// squares, for the variance) go into `sums`. The weight is the sample's unshadowed irradiance
-// estimate (luminance x cosine / pdf), so bright lights count for more, as in the image.
+// A pixel's next-event samples for the visibility guide: each one's weight, its unshadowed
+// irradiance estimate (luminance x cosine / pdf, so bright lights count for more, as in the
+// image), and whether it reached its light.
 struct VisibilitySums {
   static constexpr int kMost = kFeatureRaysPerSide * kFeatureRaysPerSide * kVisibilitySamplesPerRay;
   std::array<float, kMost> weight{}, visible{};  // visible: 1, occluded: 0
@@ -86,6 +84,7 @@ struct VisibilitySums {
   int lit_rays = 0;  // feature rays that ended on a surface that reflects light
 };
 
+// kVisibilitySamplesPerRay samples of the direct light at the surface a feature ray ended on.
 void add_visibility(const LightSampler& lights, const Accel& accel, const Feature& at, Pcg32& rng,
                     VisibilitySums& sums) {
   ++sums.lit_rays;

@@ -33,11 +33,11 @@ struct DenoiseFeatures {
   std::vector<float> visibility, visibility_variance;
 };
 
-// Light samples per feature ray for the visibility guide (kFeatureRaysPerSide^2 rays a pixel).
-inline constexpr int kVisibilitySamplesPerRay = 2;
-
 // Camera rays per pixel side for the features (antialiased edges): 2 x 2 stratified.
 inline constexpr int kFeatureRaysPerSide = 2;
+
+// Light samples per feature ray for the visibility guide.
+inline constexpr int kVisibilitySamplesPerRay = 2;
 
 // The features of the renderer's scene, camera and resolution.
 DenoiseFeatures render_denoise_features(const TileRenderer& renderer);
