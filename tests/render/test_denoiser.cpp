@@ -100,6 +100,16 @@ TEST(Denoiser, NormalEdgeSurvives) {
   expect_edge_survives(f, clean);
 }
 
+// The pixels on either side of the step at x = kW / 2 that end further than `tolerance` from
+// their side's value.
+int edge_pixels_off_their_side(const Image& out, const Image& clean, float tolerance) {
+  int count = 0;
+  for (int y = 2; y < kH - 2; ++y)
+    for (int x : {kW / 2 - 1, kW / 2})
+      count += std::abs(luminance(out.at(x, y)) - luminance(clean.at(x, y))) > tolerance;
+  return count;
+}
+
 // A shadow's edge: one albedo and one normal on both sides, so only the visibility guide shows
 // it. The noise is strong against the step (the luminance weight alone would keep a step of
 // many sigma): the guide keeps the edge pixels on their side, and without it they blur.
@@ -116,17 +126,10 @@ TEST(Denoiser, ShadowEdgeSurvivesThroughTheVisibilityGuideAlone) {
     }
   const float sigma = 0.15f, tolerance = 0.05f;
   const NoisyImage noisy = known_variance(with_noise(clean, sigma, 11), sigma * sigma);
-  auto off_side = [&](const Image& out) {  // edge pixels further than `tolerance` from their side
-    int count = 0;
-    for (int y = 2; y < kH - 2; ++y)
-      for (int x : {kW / 2 - 1, kW / 2})
-        count += std::abs(luminance(out.at(x, y)) - luminance(clean.at(x, y))) > tolerance;
-    return count;
-  };
-  EXPECT_EQ(off_side(denoise(noisy, f)), 0);
+  EXPECT_EQ(edge_pixels_off_their_side(denoise(noisy, f), clean, tolerance), 0);
   f.visibility.clear();
   f.visibility_variance.clear();
-  EXPECT_GT(off_side(denoise(noisy, f)), kH / 2);
+  EXPECT_GT(edge_pixels_off_their_side(denoise(noisy, f), clean, tolerance), kH / 2);
 }
 
 // Two walls 26 degrees apart (n.n' = 0.9): the normal weight 0.9^128 keeps them apart, the
@@ -146,12 +149,7 @@ TEST(Denoiser, TheNormalWeightsSharpnessIsItsSquarings) {
   auto off_side = [&](int squarings) {
     DenoiseParams params;
     params.normal_squarings = squarings;
-    const Image out = denoise(noisy, f, params);
-    int count = 0;
-    for (int y = 2; y < kH - 2; ++y)
-      for (int x : {kW / 2 - 1, kW / 2})
-        count += std::abs(luminance(out.at(x, y)) - luminance(clean.at(x, y))) > tolerance;
-    return count;
+    return edge_pixels_off_their_side(denoise(noisy, f, params), clean, tolerance);
   };
   EXPECT_EQ(off_side(DenoiseParams{}.normal_squarings), 0);
   EXPECT_GT(off_side(0), kH / 2);
