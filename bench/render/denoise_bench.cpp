@@ -51,6 +51,16 @@ void BM_DenoiseFilter(benchmark::State& state) {
 }
 BENCHMARK(BM_DenoiseFilter)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The same with each iteration taking its taps' weighted mean instead of a first-order fit.
+void BM_DenoiseFilterZeroOrder(benchmark::State& state) {
+  NoisyImage in = noisy_image(noisy_film());
+  DenoiseFeatures f = grid_features();
+  DenoiseParams params;
+  params.first_order = false;
+  for (auto _ : state) benchmark::DoNotOptimize(denoise(in, f, params));
+}
+BENCHMARK(BM_DenoiseFilterZeroOrder)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void BM_NoisyImageFromFilm(benchmark::State& state) {
   Film film = noisy_film();
   for (auto _ : state) benchmark::DoNotOptimize(noisy_image(film));

@@ -7,8 +7,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -27,27 +27,19 @@ constexpr float kMaxExponent = 80.0f;
 constexpr int kMostIterations = 16;
 // Added to the noise variance: without noise only an (almost) equal luminance passes.
 constexpr float kTinyNoise = 1e-20f;
+// Added to a tap's squared distance from the centre's point, so a tap at the same point (the
+// centre itself) lies on its plane, not at 0/0.
+constexpr float kTinyChord = 1e-30f;
 
 float demodulator(float albedo) {
   return 1.0f / std::max(albedo, kMinAlbedo);
 }
 
-// e^-x for x in [0, kMaxExponent], to ~2e-4 relative: 2^(integer part) from the exponent bits
-// times a polynomial for 2^(fraction). A weight needs no more precision, and the library exp
-// would be most of the filter's time.
-inline float exp_neg(float x) {
-  // log2(e^-x) + 127, in [11, 127]: positive, so truncation is the floor, and the integer part
-  // is the biased exponent of a normal float.
-  const float t = 127.0f - x * 1.44269504f;
-  const int32_t i = static_cast<int32_t>(t);
-  const float f = t - static_cast<float>(i);
-  const float p =
-      1.0f +
-      f * (0.693147f + f * (0.240227f + f * (0.0555041f + f * (0.00961813f + f * 1.33336e-3f))));
-  return p * std::bit_cast<float>(i << 23);
-}
-
-// exp_neg on eight lanes.
+// e^-x for x in [0, kMaxExponent] on eight lanes, to ~2e-4 relative: 2^(integer part) from
+// the exponent bits times a polynomial for 2^(fraction). A weight needs no more precision,
+// and the library exp would be most of the filter's time. log2(e^-x) + 127 is in [11, 127]:
+// positive, so truncation is the floor, and the integer part is the biased exponent of a
+// normal float.
 inline __m256 exp_neg8(__m256 x) {
   const __m256 t = _mm256_fnmadd_ps(x, _mm256_set1_ps(1.44269504f), _mm256_set1_ps(127.0f));
   const __m256i i = _mm256_cvttps_epi32(t);
@@ -112,6 +104,8 @@ std::vector<uint8_t> near_emitters(const DenoiseFeatures& f) {
 // The guides as planes of floats (the tap loop reads them with unit stride).
 struct GuidePlanes {
   FloatPlane nx, ny, nz, ar, ag, ab;
+  // Position; 0 everywhere without the guide (every tap then lies on the centre's plane).
+  FloatPlane px, py, pz;
   // Visibility, and its noise (deviations^2 x variance); 1 and 0 without the guide.
   FloatPlane vis, vis_noise;
   GuidePlanes(const DenoiseFeatures& f, const DenoiseParams& params) {
@@ -126,6 +120,14 @@ struct GuidePlanes {
       ab.push_back(a.z);
     }
     const size_t pixels = f.albedo.size();
+    px.assign(pixels, 0.0f);
+    py.assign(pixels, 0.0f);
+    pz.assign(pixels, 0.0f);
+    for (size_t p = 0; p < f.position.size(); ++p) {
+      px[p] = f.position[p].x;
+      py[p] = f.position[p].y;
+      pz[p] = f.position[p].z;
+    }
     const float k2 = params.visibility_noise_deviations * params.visibility_noise_deviations;
     vis.assign(pixels, 1.0f);
     vis_noise.assign(pixels, 0.0f);
@@ -186,196 +188,250 @@ void blur_variance(const Layer& in, int w, int h, float scale, FloatPlane& out) 
   });
 }
 
-// Sums over a row's taps, one entry per pixel of the row.
-struct RowSums {
-  std::vector<float> r, g, b, weight, variance;
-  std::vector<float> base_r, base_g, base_b;
-  // The centre's noise (sigma_luminance^2 x variance) and whether its luminance counts (1/0).
-  std::vector<float> noise, luminance_counts;
-  explicit RowSums(int w)
-      : r(w),
-        g(w),
-        b(w),
-        weight(w),
-        variance(w),
-        base_r(w),
-        base_g(w),
-        base_b(w),
-        noise(w),
-        luminance_counts(w) {}
+// A chunk's sums over its taps, eight pixels to a vector.
+struct TapSums {
+  __m256 r, g, b, weight, variance;
+  // First-order moments: the same sums times the tap's offset (in steps) along x and y, and for
+  // the weights and variances also times the offsets' products.
+  __m256 rx, ry, gx, gy, bx, by, wx, wy, wxx, wyy, wxy, vx, vy, vxx, vyy, vxy;
 };
 
-// One row's worth of the planes, from some first pixel on.
-struct Planes {
-  const float *nx, *ny, *nz, *ar, *ag, *ab, *vis, *vis_noise, *lum, *noise, *r, *g, *b, *variance,
-      *valid;
+// The filter's per-step constants.
+struct StepConstants {
+  float inv_albedo_sigma2, visibility_sigma2, plane_sigma2;
+  int normal_squarings;
+  bool first_order;
 };
 
-// Adds one tap to the sums of pixels [x0, x1) of a row; `q` starts at pixel x0's tap.
-void accumulate_taps(int x0, int x1, float kernel, float inv_albedo_sigma2, float visibility_sigma2,
-                     int normal_squarings, const Planes& c, const Planes& q, RowSums& s) {
-  const int n = x1 - x0;
-  const float* __restrict cnx = c.nx + x0;
-  const float* __restrict cny = c.ny + x0;
-  const float* __restrict cnz = c.nz + x0;
-  const float* __restrict car = c.ar + x0;
-  const float* __restrict cag = c.ag + x0;
-  const float* __restrict cab = c.ab + x0;
-  const float* __restrict clum = c.lum + x0;
-  const float* __restrict cvis = c.vis + x0;
-  const float* __restrict cvn = c.vis_noise + x0;
-  const float* __restrict qvis = q.vis;
-  const float* __restrict qvn = q.vis_noise;
-  const float* __restrict qnx = q.nx;
-  const float* __restrict qny = q.ny;
-  const float* __restrict qnz = q.nz;
-  const float* __restrict qar = q.ar;
-  const float* __restrict qag = q.ag;
-  const float* __restrict qab = q.ab;
-  const float* __restrict qlum = q.lum;
-  const float* __restrict qr = q.r;
-  const float* __restrict qg = q.g;
-  const float* __restrict qb = q.b;
-  const float* __restrict qvar = q.variance;
-  const float* __restrict qvalid = q.valid;
-  const float* __restrict br = s.base_r.data() + x0;
-  const float* __restrict bg = s.base_g.data() + x0;
-  const float* __restrict bb = s.base_b.data() + x0;
-  const float* __restrict cnoise = s.noise.data() + x0;
-  const float* __restrict counts = s.luminance_counts.data() + x0;
-  const float* __restrict qnoise = q.noise;
-  float* __restrict sr = s.r.data() + x0;
-  float* __restrict sg = s.g.data() + x0;
-  float* __restrict sb = s.b.data() + x0;
-  float* __restrict sw = s.weight.data() + x0;
-  float* __restrict sv = s.variance.data() + x0;
-  // Eight pixels at a time (the project targets AVX2), then the rest one by one.
-  const __m256 zero = _mm256_setzero_ps(), max_exponent = _mm256_set1_ps(kMaxExponent);
-  const __m256 sign = _mm256_set1_ps(-0.0f), k = _mm256_set1_ps(kernel);
-  const __m256 inv_a2 = _mm256_set1_ps(inv_albedo_sigma2), tiny = _mm256_set1_ps(kTinyNoise);
-  const __m256 vis_s2 = _mm256_set1_ps(visibility_sigma2);
-  int x = 0;
-  for (; x + 8 <= n; x += 8) {
-    auto at = [x](const float* p) { return _mm256_loadu_ps(p + x); };
-    __m256 wn = _mm256_mul_ps(at(cnx), at(qnx));
-    wn = _mm256_fmadd_ps(at(cny), at(qny), wn);
-    wn = _mm256_max_ps(_mm256_fmadd_ps(at(cnz), at(qnz), wn), zero);
-    for (int i = 0; i < normal_squarings; ++i) wn = _mm256_mul_ps(wn, wn);
-    const __m256 dr = _mm256_sub_ps(at(car), at(qar)), dg = _mm256_sub_ps(at(cag), at(qag)),
-                 db = _mm256_sub_ps(at(cab), at(qab));
-    __m256 albedo = _mm256_mul_ps(dr, dr);
-    albedo = _mm256_fmadd_ps(dg, dg, albedo);
-    albedo = _mm256_mul_ps(_mm256_fmadd_ps(db, db, albedo), inv_a2);
-    const __m256 dv = _mm256_sub_ps(at(cvis), at(qvis));
-    const __m256 vis_spread = _mm256_add_ps(_mm256_add_ps(at(cvn), at(qvn)), vis_s2);
-    const __m256 visibility = _mm256_mul_ps(_mm256_mul_ps(dv, dv), _mm256_rcp_ps(vis_spread));
-    const __m256 dl = _mm256_andnot_ps(sign, _mm256_sub_ps(at(clum), at(qlum)));
-    const __m256 noise = _mm256_add_ps(_mm256_add_ps(at(cnoise), at(qnoise)), tiny);
-    const __m256 luminance = _mm256_mul_ps(_mm256_mul_ps(dl, _mm256_rsqrt_ps(noise)), at(counts));
-    const __m256 exponent =
-        _mm256_min_ps(_mm256_add_ps(_mm256_add_ps(luminance, albedo), visibility), max_exponent);
-    const __m256 wq =
-        _mm256_mul_ps(_mm256_mul_ps(k, wn), _mm256_mul_ps(at(qvalid), exp_neg8(exponent)));
-    auto add = [x](float* sum, __m256 v) {
-      _mm256_storeu_ps(sum + x, _mm256_add_ps(_mm256_loadu_ps(sum + x), v));
-    };
-    add(sr, _mm256_mul_ps(wq, _mm256_sub_ps(at(qr), at(br))));
-    add(sg, _mm256_mul_ps(wq, _mm256_sub_ps(at(qg), at(bg))));
-    add(sb, _mm256_mul_ps(wq, _mm256_sub_ps(at(qb), at(bb))));
-    add(sw, wq);
-    add(sv, _mm256_mul_ps(_mm256_mul_ps(wq, wq), at(qvar)));
+// Plane `v` at pixels [i, i + 8) where `mask` is set, 0 elsewhere (never read there).
+inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask, bool full) {
+  if (full) return _mm256_loadu_ps(v.data() + i);
+  // Lanes outside the mask may lie before the plane or past it; maskload does not touch them.
+  return _mm256_maskload_ps(v.data() + i, mask);
+}
+
+// Adds the tap at offset (kx, ky) steps, pixel index `q` for the chunk's first lane, to the
+// sums of the eight pixels from index `c` on. `mask` marks lanes whose pixel and tap exist.
+inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& noise,
+                    const GuidePlanes& guide, const StepConstants& k, ptrdiff_t c, ptrdiff_t q,
+                    __m256i mask, bool full, int kx, int ky, __m256 base_r, __m256 base_g,
+                    __m256 base_b, __m256 centre_noise, __m256 counts, TapSums& s) {
+  auto centre = [&](const FloatPlane& v) { return load8(v, c, mask, full); };
+  auto tap = [&](const FloatPlane& v) { return load8(v, q, mask, full); };
+  const __m256 zero = _mm256_setzero_ps();
+  __m256 wn = _mm256_mul_ps(centre(guide.nx), tap(guide.nx));
+  wn = _mm256_fmadd_ps(centre(guide.ny), tap(guide.ny), wn);
+  wn = _mm256_max_ps(_mm256_fmadd_ps(centre(guide.nz), tap(guide.nz), wn), zero);
+  for (int i = 0; i < k.normal_squarings; ++i) wn = _mm256_mul_ps(wn, wn);
+  const __m256 dr = _mm256_sub_ps(centre(guide.ar), tap(guide.ar));
+  const __m256 dg = _mm256_sub_ps(centre(guide.ag), tap(guide.ag));
+  const __m256 db = _mm256_sub_ps(centre(guide.ab), tap(guide.ab));
+  __m256 albedo = _mm256_mul_ps(dr, dr);
+  albedo = _mm256_fmadd_ps(dg, dg, albedo);
+  albedo = _mm256_mul_ps(_mm256_fmadd_ps(db, db, albedo), _mm256_set1_ps(k.inv_albedo_sigma2));
+  const __m256 ex = _mm256_sub_ps(tap(guide.px), centre(guide.px));
+  const __m256 ey = _mm256_sub_ps(tap(guide.py), centre(guide.py));
+  const __m256 ez = _mm256_sub_ps(tap(guide.pz), centre(guide.pz));
+  __m256 off_plane = _mm256_mul_ps(centre(guide.nx), ex);
+  off_plane = _mm256_fmadd_ps(centre(guide.ny), ey, off_plane);
+  off_plane = _mm256_fmadd_ps(centre(guide.nz), ez, off_plane);
+  __m256 chord = _mm256_fmadd_ps(ex, ex, _mm256_set1_ps(kTinyChord));
+  chord = _mm256_fmadd_ps(ey, ey, chord);
+  chord = _mm256_fmadd_ps(ez, ez, chord);
+  const __m256 plane =
+      _mm256_mul_ps(_mm256_mul_ps(off_plane, off_plane),
+                    _mm256_rcp_ps(_mm256_mul_ps(chord, _mm256_set1_ps(k.plane_sigma2))));
+  const __m256 dv = _mm256_sub_ps(centre(guide.vis), tap(guide.vis));
+  const __m256 vis_spread =
+      _mm256_add_ps(_mm256_add_ps(centre(guide.vis_noise), tap(guide.vis_noise)),
+                    _mm256_set1_ps(k.visibility_sigma2));
+  const __m256 visibility = _mm256_mul_ps(_mm256_mul_ps(dv, dv), _mm256_rcp_ps(vis_spread));
+  const __m256 dl = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), _mm256_sub_ps(centre(lum), tap(lum)));
+  const __m256 spread =
+      _mm256_add_ps(_mm256_add_ps(centre_noise, tap(noise)), _mm256_set1_ps(kTinyNoise));
+  const __m256 luminance = _mm256_mul_ps(_mm256_mul_ps(dl, _mm256_rsqrt_ps(spread)), counts);
+  // min() also turns NaN (inf - inf) into the largest exponent: it returns its second operand.
+  const __m256 exponent = _mm256_min_ps(
+      _mm256_add_ps(_mm256_add_ps(luminance, albedo), _mm256_add_ps(visibility, plane)),
+      _mm256_set1_ps(kMaxExponent));
+  const float kernel = kB3[std::abs(ky)] * kB3[std::abs(kx)];
+  const __m256 wq = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(kernel), wn),
+                                  _mm256_mul_ps(tap(in.valid), exp_neg8(exponent)));
+  const __m256 cr = _mm256_mul_ps(wq, _mm256_sub_ps(tap(in.r), base_r));
+  const __m256 cg = _mm256_mul_ps(wq, _mm256_sub_ps(tap(in.g), base_g));
+  const __m256 cb = _mm256_mul_ps(wq, _mm256_sub_ps(tap(in.b), base_b));
+  const __m256 vq = _mm256_mul_ps(_mm256_mul_ps(wq, wq), tap(in.variance));
+  s.r = _mm256_add_ps(s.r, cr);
+  s.g = _mm256_add_ps(s.g, cg);
+  s.b = _mm256_add_ps(s.b, cb);
+  s.weight = _mm256_add_ps(s.weight, wq);
+  s.variance = _mm256_add_ps(s.variance, vq);
+  if (!k.first_order) return;
+  auto moment = [](__m256& sum, __m256 v, float d) {
+    sum = _mm256_fmadd_ps(v, _mm256_set1_ps(d), sum);
+  };
+  const float fx = static_cast<float>(kx), fy = static_cast<float>(ky);
+  if (kx != 0) {
+    moment(s.rx, cr, fx);
+    moment(s.gx, cg, fx);
+    moment(s.bx, cb, fx);
+    moment(s.wx, wq, fx);
+    moment(s.wxx, wq, fx * fx);
+    moment(s.vx, vq, fx);
+    moment(s.vxx, vq, fx * fx);
   }
-  for (; x < n; ++x) {
-    float wn = std::max(0.0f, cnx[x] * qnx[x] + cny[x] * qny[x] + cnz[x] * qnz[x]);
-    for (int i = 0; i < normal_squarings; ++i) wn *= wn;
-    const float dr = car[x] - qar[x], dg = cag[x] - qag[x], db = cab[x] - qab[x];
-    const float dv = cvis[x] - qvis[x];
-    const float exponent =
-        (dr * dr + dg * dg + db * db) * inv_albedo_sigma2 +
-        dv * dv / (cvn[x] + qvn[x] + visibility_sigma2) +
-        std::abs(clum[x] - qlum[x]) / std::sqrt(cnoise[x] + qnoise[x] + kTinyNoise) * counts[x];
-    // Written so that NaN (inf - inf) also becomes the largest exponent, as in the lanes above.
-    const float bounded = exponent < kMaxExponent ? exponent : kMaxExponent;
-    const float wq = kernel * wn * qvalid[x] * exp_neg(bounded);
-    sr[x] += wq * (qr[x] - br[x]);
-    sg[x] += wq * (qg[x] - bg[x]);
-    sb[x] += wq * (qb[x] - bb[x]);
-    sw[x] += wq;
-    sv[x] += wq * wq * qvar[x];
+  if (ky != 0) {
+    moment(s.ry, cr, fy);
+    moment(s.gy, cg, fy);
+    moment(s.by, cb, fy);
+    moment(s.wy, wq, fy);
+    moment(s.wyy, wq, fy * fy);
+    moment(s.vy, vq, fy);
+    moment(s.vyy, vq, fy * fy);
   }
+  if (kx != 0 && ky != 0) {
+    moment(s.wxy, wq, fx * fy);
+    moment(s.vxy, vq, fx * fy);
+  }
+}
+
+// One pixel's result from its sums (lane `i` of the chunk's vectors, spilled to arrays).
+struct LaneSums {
+  alignas(32) float r[8], g[8], b[8], weight[8], variance[8], rx[8], ry[8], gx[8], gy[8], bx[8],
+      by[8], wx[8], wy[8], wxx[8], wyy[8], wxy[8], vx[8], vy[8], vxx[8], vyy[8], vxy[8];
+  explicit LaneSums(const TapSums& s) {
+    _mm256_store_ps(r, s.r);
+    _mm256_store_ps(g, s.g);
+    _mm256_store_ps(b, s.b);
+    _mm256_store_ps(weight, s.weight);
+    _mm256_store_ps(variance, s.variance);
+    _mm256_store_ps(rx, s.rx);
+    _mm256_store_ps(ry, s.ry);
+    _mm256_store_ps(gx, s.gx);
+    _mm256_store_ps(gy, s.gy);
+    _mm256_store_ps(bx, s.bx);
+    _mm256_store_ps(by, s.by);
+    _mm256_store_ps(wx, s.wx);
+    _mm256_store_ps(wy, s.wy);
+    _mm256_store_ps(wxx, s.wxx);
+    _mm256_store_ps(wyy, s.wyy);
+    _mm256_store_ps(wxy, s.wxy);
+    _mm256_store_ps(vx, s.vx);
+    _mm256_store_ps(vy, s.vy);
+    _mm256_store_ps(vxx, s.vxx);
+    _mm256_store_ps(vyy, s.vyy);
+    _mm256_store_ps(vxy, s.vxy);
+  }
+};
+
+// The estimate's weights per tap are l_q = w_q (e0 + e1 dx + e2 dy): the weighted mean has
+// e = (1/W, 0, 0); the first-order fit the plane's value at the centre.
+struct Coefficients {
+  float e0, e1, e2;
+};
+
+// The variance of sum of l_q value_q: sum of w_q^2 var_q (e0 + e1 dx + e2 dy)^2.
+float variance_of(const LaneSums& s, int i, const Coefficients& e) {
+  return e.e0 * e.e0 * s.variance[i] + e.e1 * e.e1 * s.vxx[i] + e.e2 * e.e2 * s.vyy[i] +
+         2 * (e.e0 * e.e1 * s.vx[i] + e.e0 * e.e2 * s.vy[i] + e.e1 * e.e2 * s.vxy[i]);
+}
+
+Coefficients fit(const LaneSums& s, int i, const DenoiseParams& params) {
+  const float weight = s.weight[i];
+  Coefficients e{1.0f / weight, 0.0f, 0.0f};
+  if (!params.first_order) return e;
+  // The plane through the taps' weighted centroid m with the fitted slope, at the centre:
+  // mean - slope . m, the slope solving C slope = sum of w (o - m) value over offsets o, C their
+  // weighted covariance (ridged). So e = (1/W + u . m, -u) with u = C^-1 m.
+  const float mx = s.wx[i] * e.e0, my = s.wy[i] * e.e0;
+  const float ridge = params.slope_ridge * weight;
+  const float cxx = s.wxx[i] - s.wx[i] * mx + ridge, cyy = s.wyy[i] - s.wy[i] * my + ridge;
+  const float cxy = s.wxy[i] - s.wx[i] * my;
+  const float det = cxx * cyy - cxy * cxy;
+  if (!(det > 0)) return e;
+  const float ux = (cyy * mx - cxy * my) / det, uy = (cxx * my - cxy * mx) / det;
+  const float a = ux * mx + uy * my;  // e0 - 1/W
+  Coefficients first{e.e0 + a, -ux, -uy};
+  if (params.first_order_shrinkage <= 0) return first;
+  // The correction over the mean, d = sum of w (a + e1 dx + e2 dy) value, is kept in the share
+  // d^2 / (d^2 + k var(d)): where the slope is lost in the noise the mean is the better
+  // estimate.
+  const float dr = a * s.r[i] + first.e1 * s.rx[i] + first.e2 * s.ry[i];
+  const float dg = a * s.g[i] + first.e1 * s.gx[i] + first.e2 * s.gy[i];
+  const float db = a * s.b[i] + first.e1 * s.bx[i] + first.e2 * s.by[i];
+  const float d2 = (dr * dr + dg * dg + db * db) / 3.0f;
+  const float var_d = std::max(0.0f, variance_of(s, i, {a, first.e1, first.e2}));
+  const float denominator = d2 + params.first_order_shrinkage * var_d;
+  const float t = denominator > 0 ? d2 / denominator : 0.0f;
+  return {e.e0 + t * a, t * first.e1, t * first.e2};
 }
 
 void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const FloatPlane& noise,
                  const GuidePlanes& guide, int w, int h, int step, const DenoiseParams& params) {
-  const float inv_albedo_sigma2 = 1.0f / (params.sigma_albedo * params.sigma_albedo);
-  const float visibility_sigma2 = params.sigma_visibility * params.sigma_visibility;
+  const StepConstants k{1.0f / (params.sigma_albedo * params.sigma_albedo),
+                        params.sigma_visibility * params.sigma_visibility,
+                        params.sigma_plane * params.sigma_plane, params.normal_squarings,
+                        params.first_order};
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  // Lanes [lo, hi) of a chunk.
+  auto lanes_between = [&](int lo, int hi) {
+    const __m256i from = _mm256_cmpgt_epi32(_mm256_set1_epi32(lo), lane);  // lane < lo
+    return _mm256_andnot_si256(from, _mm256_cmpgt_epi32(_mm256_set1_epi32(hi), lane));
+  };
   for_rows(h, [&](int y0, int y1) {
-    RowSums s(w);
     for (int y = y0; y < y1; ++y) {
-      const size_t row = static_cast<size_t>(y) * w;
-      for (int x = 0; x < w; ++x) {
-        const size_t p = row + x;
-        const bool valid = in.valid[p] > 0;
+      const ptrdiff_t row = static_cast<ptrdiff_t>(y) * w;
+      for (int x0 = 0; x0 < w; x0 += 8) {
+        const int lanes = std::min(8, w - x0);
+        const ptrdiff_t c = row + x0;
+        const __m256i centre_mask = lanes_between(0, lanes);
+        const bool whole = lanes == 8;
         // Differences are taken from the centre, so a constant neighbourhood stays exactly
-        // constant; a pixel without a value takes its neighbours' weighted mean.
-        s.base_r[x] = valid ? in.r[p] : 0.0f;
-        s.base_g[x] = valid ? in.g[p] : 0.0f;
-        s.base_b[x] = valid ? in.b[p] : 0.0f;
-        s.noise[x] = noise[p];
-        s.luminance_counts[x] = valid ? 1.0f : 0.0f;  // no value: its luminance means nothing
-        s.r[x] = s.g[x] = s.b[x] = s.weight[x] = s.variance[x] = 0;
-      }
-      const Planes centre{guide.nx.data() + row,
-                          guide.ny.data() + row,
-                          guide.nz.data() + row,
-                          guide.ar.data() + row,
-                          guide.ag.data() + row,
-                          guide.ab.data() + row,
-                          guide.vis.data() + row,
-                          guide.vis_noise.data() + row,
-                          lum.data() + row,
-                          noise.data() + row,
-                          nullptr,
-                          nullptr,
-                          nullptr,
-                          nullptr,
-                          nullptr};
-      for (int ky = -2; ky <= 2; ++ky) {
-        const int yy = y + ky * step;
-        if (yy < 0 || yy >= h) continue;
-        for (int kx = -2; kx <= 2; ++kx) {
-          const int off = kx * step;
-          const int x0 = std::max(0, -off), x1 = std::min(w, w - off);
-          const float kernel = kB3[std::abs(ky)] * kB3[std::abs(kx)];
-          const size_t q0 = static_cast<size_t>(yy) * w + (off + x0);  // pixel x0's tap
-          const Planes tap{guide.nx.data() + q0,  guide.ny.data() + q0,
-                           guide.nz.data() + q0,  guide.ar.data() + q0,
-                           guide.ag.data() + q0,  guide.ab.data() + q0,
-                           guide.vis.data() + q0, guide.vis_noise.data() + q0,
-                           lum.data() + q0,       noise.data() + q0,
-                           in.r.data() + q0,      in.g.data() + q0,
-                           in.b.data() + q0,      in.variance.data() + q0,
-                           in.valid.data() + q0};
-          accumulate_taps(x0, x1, kernel, inv_albedo_sigma2, visibility_sigma2,
-                          params.normal_squarings, centre, tap, s);
+        // constant; a pixel without a value takes its neighbours' weighted mean, and its
+        // luminance means nothing.
+        const __m256 counts = _mm256_and_ps(
+            _mm256_cmp_ps(load8(in.valid, c, centre_mask, whole), _mm256_setzero_ps(), _CMP_GT_OQ),
+            _mm256_set1_ps(1.0f));
+        const __m256 has = _mm256_cmp_ps(counts, _mm256_setzero_ps(), _CMP_GT_OQ);
+        const __m256 base_r = _mm256_and_ps(load8(in.r, c, centre_mask, whole), has);
+        const __m256 base_g = _mm256_and_ps(load8(in.g, c, centre_mask, whole), has);
+        const __m256 base_b = _mm256_and_ps(load8(in.b, c, centre_mask, whole), has);
+        const __m256 centre_noise = load8(noise, c, centre_mask, whole);
+        TapSums s{};
+        for (int ky = -2; ky <= 2; ++ky) {
+          const int yy = y + ky * step;
+          if (yy < 0 || yy >= h) continue;
+          for (int kx = -2; kx <= 2; ++kx) {
+            const int off = kx * step;
+            // Lanes whose tap lies inside the row.
+            const int lo = std::max(0, -off - x0), hi = std::min(lanes, w - off - x0);
+            if (lo >= hi) continue;
+            const ptrdiff_t q = static_cast<ptrdiff_t>(yy) * w + x0 + off;
+            add_tap(in, lum, noise, guide, k, c, q, lanes_between(lo, hi), lo == 0 && hi == 8, kx,
+                    ky, base_r, base_g, base_b, centre_noise, counts, s);
+          }
         }
-      }
-      for (int x = 0; x < w; ++x) {
-        const size_t p = row + x;
-        const float weight = s.weight[x];
-        if (weight > 0) {
-          const float inv = 1.0f / weight;
-          out.r[p] = s.base_r[x] + s.r[x] * inv;
-          out.g[p] = s.base_g[x] + s.g[x] * inv;
-          out.b[p] = s.base_b[x] + s.b[x] * inv;
-          out.variance[p] = s.variance[x] * inv * inv;
-          out.valid[p] = 1;
-        } else {
-          out.r[p] = in.r[p];
-          out.g[p] = in.g[p];
-          out.b[p] = in.b[p];
-          out.variance[p] = in.variance[p];
-          out.valid[p] = in.valid[p];
+        const LaneSums sums(s);
+        for (int i = 0; i < lanes; ++i) {
+          const ptrdiff_t p = c + i;
+          const float weight = sums.weight[i];
+          if (weight > 0) {
+            const Coefficients e = fit(sums, i, params);
+            const float br = in.valid[p] > 0 ? in.r[p] : 0.0f;
+            const float bg = in.valid[p] > 0 ? in.g[p] : 0.0f;
+            const float bb = in.valid[p] > 0 ? in.b[p] : 0.0f;
+            out.r[p] = br + e.e0 * sums.r[i] + e.e1 * sums.rx[i] + e.e2 * sums.ry[i];
+            out.g[p] = bg + e.e0 * sums.g[i] + e.e1 * sums.gx[i] + e.e2 * sums.gy[i];
+            out.b[p] = bb + e.e0 * sums.b[i] + e.e1 * sums.bx[i] + e.e2 * sums.by[i];
+            out.variance[p] = std::max(0.0f, variance_of(sums, i, e));
+            out.valid[p] = 1;
+          } else {
+            out.r[p] = in.r[p];
+            out.g[p] = in.g[p];
+            out.b[p] = in.b[p];
+            out.variance[p] = in.variance[p];
+            out.valid[p] = in.valid[p];
+          }
         }
       }
     }
@@ -405,6 +461,7 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
   const size_t pixels = static_cast<size_t>(w) * h;
   if (f.width != w || f.height != h || f.albedo.size() != pixels || f.normal.size() != pixels ||
       (!f.emitter.empty() && f.emitter.size() != pixels) ||
+      (!f.position.empty() && f.position.size() != pixels) ||
       (!f.visibility.empty() &&
        (f.visibility.size() != pixels || f.visibility_variance.size() != pixels)) ||
       in.variance.size() != pixels || in.has_estimate.size() != pixels)
@@ -415,6 +472,12 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
   // Past 32 squarings (an exponent of 2^32) every pair of distinct normals weighs 0 anyway.
   if (params.normal_squarings < 0 || params.normal_squarings > 32)
     throw std::invalid_argument("denoise: normal_squarings must be in [0, 32]");
+  if (!(params.sigma_plane > 0) || !std::isfinite(params.sigma_plane))
+    throw std::invalid_argument("denoise: sigma_plane must be positive and finite");
+  if (!(params.slope_ridge >= 0) || !std::isfinite(params.slope_ridge) ||
+      !(params.first_order_shrinkage >= 0) || !std::isfinite(params.first_order_shrinkage))
+    throw std::invalid_argument(
+        "denoise: slope_ridge and first_order_shrinkage must be non-negative and finite");
   if (!(params.sigma_visibility > 0) || !std::isfinite(params.sigma_visibility) ||
       !(params.visibility_noise_deviations >= 0))
     throw std::invalid_argument(

@@ -1,10 +1,13 @@
 // An edge-avoiding à-trous wavelet filter (Dammertz et al., "Edge-Avoiding À-Trous Wavelet
 // Transform for fast Global Illumination Filtering", HPG 2010) with the variance guidance of
 // SVGF (Schied et al., HPG 2017): iterations of a 5x5 B3-spline kernel whose taps spread
-// 1, 2, 4, ... pixels apart, each tap weighted down where the first-hit normal or albedo
-// differs or where the luminance differs by more than the noise explains. The noise level is
-// the pixel's variance of its mean, filtered along with the image. The filter works on the
-// image divided by the albedo (the light arriving at the surface), so textures stay sharp.
+// 1, 2, 4, ... pixels apart, each tap weighted down where the first-hit normal, albedo, direct
+// light's visibility or plane differs or where the luminance differs by more than the noise
+// explains. The noise level is the pixel's variance of its mean, filtered along with the
+// image. Each iteration fits a plane to its weighted taps (local linear regression in screen
+// space, as in Bitterli et al.'s first-order regression, with the pixel offset as the only
+// feature) instead of taking their mean. The filter works on the image divided by the albedo
+// (the light arriving at the surface), so textures stay sharp.
 // Biased (it trades noise for blur); QualityOptions::denoise switches it on.
 #pragma once
 
@@ -27,6 +30,20 @@ struct DenoiseParams {
   // soft shadows a pixel's few light samples make visibility noisy.
   float sigma_visibility = 0.2f;
   float visibility_noise_deviations = 4.0f;
+  // How far a tap's surface point may lie off the centre's tangent plane, as the sine of the
+  // angle between the plane and the line joining them, for a weight of 1/e: 0 on one plane,
+  // about 1 across a step in depth (a box's face before a wall, which albedo and normal miss).
+  float sigma_plane = 0.5f;
+  // Each iteration fits a plane in screen space to its weighted taps (local linear regression)
+  // rather than taking their mean: where the weights are one-sided (at an edge) a mean is
+  // pulled towards the side the taps lie on whenever the light has a gradient.
+  bool first_order = true;
+  // Added to the slope terms' moments, times the sum of weights: keeps the fit from
+  // extrapolating a slope out of two or three taps.
+  float slope_ridge = 0.1f;
+  // The fit's correction over the mean, c, is kept in the share c^2 / (c^2 + this x var(c)):
+  // where the slope is lost in the noise, the mean is the better estimate. 0: always the fit.
+  float first_order_shrinkage = 1.0f;
 };
 
 // The filter's input: an estimate per pixel and how noisy it is.

@@ -17,6 +17,9 @@ namespace {
 
 // Mirrors followed before a mirror's own colour is taken (a hall of mirrors must end).
 constexpr int kMaxMirrorBounces = 4;
+// How far along the ray the sky's position guide lies, in scene diameters: far enough that the
+// sky is never mistaken for a surface's plane, near enough for float differences.
+constexpr float kSkyDistance = 1e3f;
 
 // What the surface does to light, as one colour: its reflectance at normal incidence, roughly.
 Color albedo_of(const BsdfParams& b) {
@@ -46,15 +49,16 @@ struct Feature {
   Vec3f position{0.0f}, geometric_normal{0.0f};
 };
 
-Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray) {
+Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray, float sky_distance) {
   Color tint(1.0f);
   for (int bounce = 0;; ++bounce) {
     Hit hit;
-    if (!accel.intersect(ray, hit)) return {tint, -ray.dir};
+    if (!accel.intersect(ray, hit))
+      return {tint, -ray.dir, false, false, ray.org + ray.dir * sky_distance};
     SurfaceInteraction si = make_interaction(scene, hit);
     Vec3f n = si.shading.n;
     if (dot(n, ray.dir) > 0) n = -n;
-    if (si.material->is_emissive()) return {tint, n, true};
+    if (si.material->is_emissive()) return {tint, n, true, false, si.position};
     BsdfParams bsdf = resolve_bsdf(scene, si);
     Vec3f ng = dot(si.geometric_normal, ray.dir) > 0 ? -si.geometric_normal : si.geometric_normal;
     if (bsdf.type != MaterialType::kMirror || bounce == kMaxMirrorBounces)
@@ -66,7 +70,8 @@ Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray) {
               ng};
     tint *= bsdf.specular_color;
     Vec3f reflected = ray.dir - n * (2.0f * dot(ray.dir, n));
-    if (dot(reflected, ng) <= 0) return {tint, n};  // the shading normal sent it inside
+    if (dot(reflected, ng) <= 0)  // the shading normal sent it inside
+      return {tint, n, false, false, si.position};
     Ray next;
     next.org = offset_ray_origin(si.position, ng, reflected);
     next.dir = reflected;
@@ -143,6 +148,8 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
   f.albedo.assign(pixels, Color(0.0f));
   f.normal.assign(pixels, Vec3f(0.0f));
   f.emitter.assign(pixels, 0);
+  f.position.assign(pixels, Vec3f(0.0f));
+  const float sky_distance = kSkyDistance * std::max(1.0f, scene.bounds().diagonal());
   const LightSampler& lights = renderer.integrator().lights();
   if (!lights.empty()) {
     f.visibility.assign(pixels, 1.0f);
@@ -154,7 +161,7 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < s.width; ++x) {
         Color albedo(0.0f);
-        Vec3f normal(0.0f);
+        Vec3f normal(0.0f), position(0.0f);
         bool emitter = false;
         size_t p = static_cast<size_t>(y) * s.width + x;
         // Seeded by the pixel: the guide is the same on every run and from every scheduler.
@@ -163,8 +170,10 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
         for (int j = 0; j < kSide; ++j)
           for (int i = 0; i < kSide; ++i) {
             Vec2f at{x + (i + 0.5f) / kSide, y + (j + 0.5f) / kSide};
-            Feature one = trace_feature(scene, accel, camera.generate_ray(at, {0.5f, 0.5f}));
+            Feature one =
+                trace_feature(scene, accel, camera.generate_ray(at, {0.5f, 0.5f}), sky_distance);
             albedo += one.albedo * kWeight;
+            position += one.position * kWeight;
             normal += one.normal;
             emitter = emitter || one.emitter;
             if (one.lit_surface && !lights.empty())
@@ -173,6 +182,7 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
         if (!lights.empty()) set_visibility(visibility, kSide * kSide, f, p);
         f.albedo[p] = albedo;
         f.emitter[p] = emitter;
+        f.position[p] = position;
         float len = length(normal);
         // Opposite normals in one pixel (a thin sheet's edge) cancel: any unit vector will do.
         f.normal[p] = len > 1e-6f ? normal / len : Vec3f(0.0f, 0.0f, 1.0f);

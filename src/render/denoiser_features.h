@@ -31,6 +31,10 @@ struct DenoiseFeatures {
   // Where no light reaches a surface it is 0; sky, lights and glass have 1. Empty: the scene
   // has no lights, so no guide.
   std::vector<float> visibility, visibility_variance;
+  // The mean of the first surfaces' positions (through mirrors), far along the ray where the
+  // camera sees the sky. Two surfaces with the same albedo and normal at different depths (a
+  // box's face before a wall) differ here. Empty: no guide.
+  std::vector<Vec3f> position;
 };
 
 // Camera rays per pixel side for the features (antialiased edges): 2 x 2 stratified.

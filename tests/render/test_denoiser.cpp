@@ -132,6 +132,56 @@ TEST(Denoiser, ShadowEdgeSurvivesThroughTheVisibilityGuideAlone) {
   EXPECT_GT(edge_pixels_off_their_side(denoise(noisy, f), clean, tolerance), kH / 2);
 }
 
+// A box's face before a wall: one albedo and one normal, only the depth differs, which the
+// position guide shows. The noise is strong against the step, as in the shadow test above.
+TEST(Denoiser, ADepthStepSurvivesThroughThePositionGuideAlone) {
+  DenoiseFeatures f = flat_features(Color(1.0f));
+  f.position.resize(f.albedo.size());
+  Image clean(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool front = x < kW / 2;
+      // Both planes face +z (the flat normal); pixels 1 cm apart, the wall 1 m behind.
+      f.position[static_cast<size_t>(y) * kW + x] = Vec3f(0.01f * x, 0.01f * y, front ? 0 : -1);
+      clean.at(x, y) = Color(front ? 0.5f : 0.2f);
+    }
+  const float sigma = 0.15f, tolerance = 0.05f;
+  const NoisyImage noisy = known_variance(with_noise(clean, sigma, 11), sigma * sigma);
+  EXPECT_EQ(edge_pixels_off_their_side(denoise(noisy, f), clean, tolerance), 0);
+  f.position.clear();
+  EXPECT_GT(edge_pixels_off_their_side(denoise(noisy, f), clean, tolerance), kH / 2);
+}
+
+// Light rising towards an edge the normals show (a face lit more strongly near its rim): the
+// mean of one side's taps lies inside the face, so it is darker than the rim; the first-order
+// fit follows the slope up to the edge.
+TEST(Denoiser, AGradientUpToAnEdgeKeepsItsValueWithTheFirstOrderFit) {
+  DenoiseFeatures f = flat_features(Color(1.0f));
+  Image clean(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool face = x < kW / 2;
+      f.normal[static_cast<size_t>(y) * kW + x] = face ? Vec3f(0, 0, 1) : Vec3f(1, 0, 0);
+      clean.at(x, y) = Color(face ? 0.2f + 0.02f * x : 0.1f);
+    }
+  const float sigma = 0.01f;
+  const NoisyImage noisy = known_variance(with_noise(clean, sigma, 3), sigma * sigma);
+  // The mean error of the face's last column over the rows (the noise averages out).
+  auto rim_bias = [&](bool first_order) {
+    DenoiseParams params;
+    params.first_order = first_order;
+    const Image out = denoise(noisy, f, params);
+    double sum = 0;
+    for (int y = 0; y < kH; ++y) sum += out.at(kW / 2 - 1, y).x - clean.at(kW / 2 - 1, y).x;
+    return sum / kH;
+  };
+  // The slope is 0.02 a pixel: the mean sits half a pixel inside the face (measured -0.011;
+  // the luminance weight keeps the far taps out), the fit a quarter of that (-0.0027).
+  const double mean_bias = rim_bias(false), fit_bias = rim_bias(true);
+  EXPECT_LT(mean_bias, -0.008);
+  EXPECT_LT(std::abs(fit_bias), std::abs(mean_bias) / 3) << mean_bias;
+}
+
 // Two walls 26 degrees apart (n.n' = 0.9): the normal weight 0.9^128 keeps them apart, the
 // weight 0.9^1 of normal_squarings = 0 lets the noise-level step blur.
 TEST(Denoiser, TheNormalWeightsSharpnessIsItsSquarings) {
@@ -209,13 +259,34 @@ TEST(Denoiser, SizeMismatchIsRefused) {
     EXPECT_THROW(denoise(known_variance(fits, 0.0f), flat_features(), params),
                  std::invalid_argument)
         << bad;
+    params = {};
+    params.sigma_plane = bad;
+    EXPECT_THROW(denoise(known_variance(fits, 0.0f), flat_features(), params),
+                 std::invalid_argument)
+        << bad;
   }
+  for (float bad : {-1.0f, NAN, INFINITY}) {
+    DenoiseParams params;
+    params.slope_ridge = bad;
+    EXPECT_THROW(denoise(known_variance(fits, 0.0f), flat_features(), params),
+                 std::invalid_argument)
+        << bad;
+    params = {};
+    params.first_order_shrinkage = bad;
+    EXPECT_THROW(denoise(known_variance(fits, 0.0f), flat_features(), params),
+                 std::invalid_argument)
+        << bad;
+  }
+  DenoiseFeatures short_positions = flat_features();
+  short_positions.position.assign(short_positions.albedo.size() - 1, Vec3f(0.0f));
+  EXPECT_THROW(denoise(known_variance(fits, 0.0f), short_positions), std::invalid_argument);
 }
 
 // A point light over a floor, a square occluder between them: its shadow on the floor is the
 // square scaled by 2 from the light. Where all of a pixel's feature rays reach the floor well
 // inside that shadow, visibility is exactly 0; well outside it, exactly 1; noise-free both.
-TEST(DenoiseFeatures, VisibilityIsExactUnderAPointLight) {
+// Where they all reach the floor, their mean position lies on it.
+TEST(DenoiseFeatures, VisibilityAndPositionAreExactUnderAPointLight) {
   Scene scene;
   const uint32_t grey = add_material(scene, Material{});
   add_mesh(scene, "floor", make_quad({-4, 0, -4}, {8, 0, 0}, {0, 0, 8}, {0, 1, 0}), grey);
@@ -259,6 +330,9 @@ TEST(DenoiseFeatures, VisibilityIsExactUnderAPointLight) {
       EXPECT_GE(f.visibility[p], 0.0f);
       EXPECT_LE(f.visibility[p], 1.0f);
       EXPECT_GE(f.visibility_variance[p], 0.0f);
+      if (on_floor(x, y, 0.0f, 3.9f)) {  // the mean of points on the floor
+        EXPECT_NEAR(f.position[p].y, 0.0f, 1e-5f) << x << "," << y;
+      }
       if (on_floor(x, y, 0.0f, 0.9f)) {
         ++shadowed;
         EXPECT_EQ(f.visibility[p], 0.0f) << x << "," << y;

@@ -144,16 +144,25 @@ TEST(DenoiserSelection, StrongNoiseOnAFlatRegionIsFilteredStrongly) {
 
 TEST(DenoiserSelection, ASharpEdgeWithLittleNoiseStaysSharp) {
   // A step the guides do not show (a shadow's edge). The filter's luminance weight already
-  // stops at it; the choice must not undo that.
+  // stops at it; the choice must not undo that. With the first-order fit the other side's few
+  // taps that pass tilt the fitted plane, which is then extrapolated to the centre: the step
+  // blurs a little more (measured up to 1.75 sigma at the pixels beside it; within 1 with the
+  // taps' mean).
   const float sigma = 0.02f, low = 0.3f, high = 0.5f;
   Image clean(kW, kH);
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) clean.at(x, y) = Color(x < kW / 2 ? low : high);
   Halves h = noisy_halves(clean, sigma * std::sqrt(2.0f));
-  Image out = denoise_cross_validated(h.full, h.a, h.b, flat_features(kW, kH));
-  for (int y = 0; y < kH; ++y)
-    for (int x : {kW / 2 - 2, kW / 2 - 1, kW / 2, kW / 2 + 1})
-      EXPECT_NEAR(out.at(x, y).x, clean.at(x, y).x, sigma) << x << "," << y;
+  for (bool first_order : {false, true}) {
+    DenoiseParams params;
+    params.first_order = first_order;
+    const float tolerance = first_order ? 2.0f * sigma : sigma;
+    Image out = denoise_cross_validated(h.full, h.a, h.b, flat_features(kW, kH), params);
+    for (int y = 0; y < kH; ++y)
+      for (int x : {kW / 2 - 2, kW / 2 - 1, kW / 2, kW / 2 + 1})
+        EXPECT_NEAR(out.at(x, y).x, clean.at(x, y).x, tolerance)
+            << x << "," << y << (first_order ? " first order" : " mean");
+  }
 }
 
 TEST(DenoiserSelection, ASmoothPeakIsFilteredLessThanTheFixedFilterDoes) {
@@ -183,7 +192,8 @@ TEST(DenoiserSelection, ASmoothPeakIsFilteredLessThanTheFixedFilterDoes) {
 
 // The built-in Cornell box at 64x48 (its light in view): each strength against a converged
 // render, away from the light, whose rim every level leaves raw.
-TEST(DenoiserSelection, OnTheCornellBoxTheChoiceBeatsTheFixedFilterAndKeepsTheLightsRimRaw) {
+TEST(DenoiserSelection,
+     OnTheCornellBoxTheChoiceBeatsTheFixedFilterAndTheMeanAndKeepsTheLightsRimRaw) {
   Scene scene = make_cornell_scene();
   EmbreeNativeAccel accel;
   accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
@@ -206,7 +216,11 @@ TEST(DenoiserSelection, OnTheCornellBoxTheChoiceBeatsTheFixedFilterAndKeepsTheLi
     const Image raw = film.resolve(), fixed = denoise(noisy_image(film), f);
     FrameResolver resolver;
     const Image chosen = resolver.resolve(renderer, film);
-    double fixed_error = 0, chosen_error = 0;
+    DenoiseParams mean_only;
+    mean_only.first_order = false;
+    FrameResolver mean_resolver(mean_only);
+    const Image chosen_mean = mean_resolver.resolve(renderer, film);
+    double fixed_error = 0, chosen_error = 0, chosen_mean_error = 0;
     for (int y = 0; y < raw.height(); ++y)
       for (int x = 0; x < raw.width(); ++x) {
         if (testing::near_light(f, x, y)) {
@@ -214,12 +228,17 @@ TEST(DenoiserSelection, OnTheCornellBoxTheChoiceBeatsTheFixedFilterAndKeepsTheLi
           continue;
         }
         const Color d = fixed.at(x, y) - converged.at(x, y),
-                    c = chosen.at(x, y) - converged.at(x, y);
+                    c = chosen.at(x, y) - converged.at(x, y),
+                    m = chosen_mean.at(x, y) - converged.at(x, y);
         fixed_error += dot(d, d);
         chosen_error += dot(c, c);
+        chosen_mean_error += dot(m, m);
       }
-    // Measured 0.75x and 0.73x at 16 and 64 spp.
-    EXPECT_LT(std::sqrt(chosen_error), 0.85 * std::sqrt(fixed_error)) << spp << " spp";
+    // Measured 0.86x and 0.84x at 16 and 64 spp (0.78x and 0.76x when both filters take
+    // their taps' mean, as the first-order fit helps the fixed filter more).
+    EXPECT_LT(std::sqrt(chosen_error), 0.9 * std::sqrt(fixed_error)) << spp << " spp";
+    // Measured 0.94x and 0.93x.
+    EXPECT_LT(std::sqrt(chosen_error), 0.97 * std::sqrt(chosen_mean_error)) << spp << " spp";
   }
 }
 
