@@ -210,14 +210,23 @@ inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask, bool full) {
   return _mm256_maskload_ps(v.data() + i, mask);
 }
 
+template <bool kFull>
+inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask) {
+  if constexpr (kFull) return _mm256_loadu_ps(v.data() + i);
+  return _mm256_maskload_ps(v.data() + i, mask);
+}
+
 // Adds the tap at offset (kx, ky) steps, pixel index `q` for the chunk's first lane, to the
 // sums of the eight pixels from index `c` on. `mask` marks lanes whose pixel and tap exist.
+// The whole chunk's taps inside the image (kFull) and the first-order sums are known when the
+// loop is compiled, so the hot path has neither masks nor branches.
+template <bool kFull, bool kFirstOrder>
 inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& noise,
                     const GuidePlanes& guide, const StepConstants& k, ptrdiff_t c, ptrdiff_t q,
-                    __m256i mask, bool full, int kx, int ky, __m256 base_r, __m256 base_g,
-                    __m256 base_b, __m256 centre_noise, __m256 counts, TapSums& s) {
-  auto centre = [&](const FloatPlane& v) { return load8(v, c, mask, full); };
-  auto tap = [&](const FloatPlane& v) { return load8(v, q, mask, full); };
+                    __m256i mask, int kx, int ky, __m256 base_r, __m256 base_g, __m256 base_b,
+                    __m256 centre_noise, __m256 counts, TapSums& s) {
+  auto centre = [&](const FloatPlane& v) { return load8<kFull>(v, c, mask); };
+  auto tap = [&](const FloatPlane& v) { return load8<kFull>(v, q, mask); };
   const __m256 zero = _mm256_setzero_ps();
   __m256 wn = _mm256_mul_ps(centre(guide.nx), tap(guide.nx));
   wn = _mm256_fmadd_ps(centre(guide.ny), tap(guide.ny), wn);
@@ -266,7 +275,7 @@ inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& no
   s.b = _mm256_add_ps(s.b, cb);
   s.weight = _mm256_add_ps(s.weight, wq);
   s.variance = _mm256_add_ps(s.variance, vq);
-  if (!k.first_order) return;
+  if constexpr (!kFirstOrder) return;
   auto moment = [](__m256& sum, __m256 v, float d) {
     sum = _mm256_fmadd_ps(v, _mm256_set1_ps(d), sum);
   };
@@ -407,8 +416,20 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
             const int lo = std::max(0, -off - x0), hi = std::min(lanes, w - off - x0);
             if (lo >= hi) continue;
             const ptrdiff_t q = static_cast<ptrdiff_t>(yy) * w + x0 + off;
-            add_tap(in, lum, noise, guide, k, c, q, lanes_between(lo, hi), lo == 0 && hi == 8, kx,
-                    ky, base_r, base_g, base_b, centre_noise, counts, s);
+            const __m256i mask = lanes_between(lo, hi);
+            const bool full = lo == 0 && hi == 8;
+            if (full && k.first_order)
+              add_tap<true, true>(in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g,
+                                  base_b, centre_noise, counts, s);
+            else if (full)
+              add_tap<true, false>(in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g,
+                                   base_b, centre_noise, counts, s);
+            else if (k.first_order)
+              add_tap<false, true>(in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g,
+                                   base_b, centre_noise, counts, s);
+            else
+              add_tap<false, false>(in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g,
+                                    base_b, centre_noise, counts, s);
           }
         }
         const LaneSums sums(s);
