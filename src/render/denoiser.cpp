@@ -203,17 +203,20 @@ struct StepConstants {
   bool first_order;
 };
 
-// Plane `v` at pixels [i, i + 8) where `mask` is set, 0 elsewhere (never read there).
-inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask, bool full) {
-  if (full) return _mm256_loadu_ps(v.data() + i);
-  // Lanes outside the mask may lie before the plane or past it; maskload does not touch them.
-  return _mm256_maskload_ps(v.data() + i, mask);
-}
-
+// Plane `v` at pixels [i, i + 8) where `mask` is set, 0 elsewhere (never read there); kFull:
+// every lane is set.
 template <bool kFull>
 inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask) {
-  if constexpr (kFull) return _mm256_loadu_ps(v.data() + i);
-  return _mm256_maskload_ps(v.data() + i, mask);
+  if constexpr (kFull) {
+    return _mm256_loadu_ps(v.data() + i);
+  } else {
+    // Lanes outside the mask may lie before the plane or past it; maskload does not touch them.
+    return _mm256_maskload_ps(v.data() + i, mask);
+  }
+}
+
+inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask, bool full) {
+  return full ? load8<true>(v, i, mask) : load8<false>(v, i, mask);
 }
 
 // Adds the tap at offset (kx, ky) steps, pixel index `q` for the chunk's first lane, to the
@@ -279,25 +282,20 @@ inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& no
   auto moment = [](__m256& sum, __m256 v, float d) {
     sum = _mm256_fmadd_ps(v, _mm256_set1_ps(d), sum);
   };
+  // One axis's moments, offset d along it.
+  auto along = [&](float d, __m256& r, __m256& g, __m256& b, __m256& w, __m256& ww, __m256& v,
+                   __m256& vv) {
+    moment(r, cr, d);
+    moment(g, cg, d);
+    moment(b, cb, d);
+    moment(w, wq, d);
+    moment(ww, wq, d * d);
+    moment(v, vq, d);
+    moment(vv, vq, d * d);
+  };
   const float fx = static_cast<float>(kx), fy = static_cast<float>(ky);
-  if (kx != 0) {
-    moment(s.rx, cr, fx);
-    moment(s.gx, cg, fx);
-    moment(s.bx, cb, fx);
-    moment(s.wx, wq, fx);
-    moment(s.wxx, wq, fx * fx);
-    moment(s.vx, vq, fx);
-    moment(s.vxx, vq, fx * fx);
-  }
-  if (ky != 0) {
-    moment(s.ry, cr, fy);
-    moment(s.gy, cg, fy);
-    moment(s.by, cb, fy);
-    moment(s.wy, wq, fy);
-    moment(s.wyy, wq, fy * fy);
-    moment(s.vy, vq, fy);
-    moment(s.vyy, vq, fy * fy);
-  }
+  if (kx != 0) along(fx, s.rx, s.gx, s.bx, s.wx, s.wxx, s.vx, s.vxx);
+  if (ky != 0) along(fy, s.ry, s.gy, s.by, s.wy, s.wyy, s.vy, s.vyy);
   if (kx != 0 && ky != 0) {
     moment(s.wxy, wq, fx * fy);
     moment(s.vxy, vq, fx * fy);

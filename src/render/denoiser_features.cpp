@@ -44,7 +44,8 @@ struct Feature {
   Vec3f normal{0.0f};
   bool emitter = false;
   // A surface that reflects light (not sky, a light or glass): its direct light's visibility
-  // is a guide there. `position` and `geometric_normal` (facing the viewer) place its shadow rays.
+  // is a guide there. `position` (far along the ray for the sky) is the plane guide's point;
+  // with `geometric_normal` (facing the viewer) it places a lit surface's shadow rays.
   bool lit_surface = false;
   Vec3f position{0.0f}, geometric_normal{0.0f};
 };
