@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace tuneray {
 
@@ -396,10 +397,9 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
         // Differences are taken from the centre, so a constant neighbourhood stays exactly
         // constant; a pixel without a value takes its neighbours' weighted mean, and its
         // luminance means nothing.
-        const __m256 counts = _mm256_and_ps(
-            _mm256_cmp_ps(load8(in.valid, c, centre_mask, whole), _mm256_setzero_ps(), _CMP_GT_OQ),
-            _mm256_set1_ps(1.0f));
-        const __m256 has = _mm256_cmp_ps(counts, _mm256_setzero_ps(), _CMP_GT_OQ);
+        const __m256 has =
+            _mm256_cmp_ps(load8(in.valid, c, centre_mask, whole), _mm256_setzero_ps(), _CMP_GT_OQ);
+        const __m256 counts = _mm256_and_ps(has, _mm256_set1_ps(1.0f));
         const __m256 base_r = _mm256_and_ps(load8(in.r, c, centre_mask, whole), has);
         const __m256 base_g = _mm256_and_ps(load8(in.g, c, centre_mask, whole), has);
         const __m256 base_b = _mm256_and_ps(load8(in.b, c, centre_mask, whole), has);
@@ -416,18 +416,18 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
             const ptrdiff_t q = static_cast<ptrdiff_t>(yy) * w + x0 + off;
             const __m256i mask = lanes_between(lo, hi);
             const bool full = lo == 0 && hi == 8;
-            if (full && k.first_order)
-              add_tap<true, true>(in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g,
-                                  base_b, centre_noise, counts, s);
-            else if (full)
-              add_tap<true, false>(in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g,
-                                   base_b, centre_noise, counts, s);
-            else if (k.first_order)
-              add_tap<false, true>(in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g,
-                                   base_b, centre_noise, counts, s);
+            // Both flags as types, so each combination gets its own compiled loop body.
+            auto add = [&](auto whole_chunk, auto first_order) {
+              add_tap<decltype(whole_chunk)::value, decltype(first_order)::value>(
+                  in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g, base_b,
+                  centre_noise, counts, s);
+            };
+            using Yes = std::true_type;
+            using No = std::false_type;
+            if (full)
+              k.first_order ? add(Yes{}, Yes{}) : add(Yes{}, No{});
             else
-              add_tap<false, false>(in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g,
-                                    base_b, centre_noise, counts, s);
+              k.first_order ? add(No{}, Yes{}) : add(No{}, No{});
           }
         }
         const LaneSums sums(s);
