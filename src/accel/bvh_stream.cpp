@@ -50,7 +50,6 @@ uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, ui
   int near_row[3], far_row[3];
   near_rows_of_octant(octant, near_row);
   far_rows_of_octant(octant, far_row);
-  const RowOffsets rows = row_offsets<N, false>(near_row, far_row);
   StreamEntry stack[kStackSize];
   int sp = 0;
   stack[sp++] = {ctx.root, live};
@@ -63,7 +62,7 @@ uint32_t occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, ui
     while (!is_leaf(cur)) {
       const auto& node = *ref_ptr<typename Planes::Node>(cur);
       V nears[3], fars[3];
-      Planes::load(node, rows, nears, fars);
+      Planes::load(node, near_row, far_row, nears, fars);
       ChildRays<N> entered;
       for (uint32_t m = rays; m; m &= m - 1) {
         const int i = __builtin_ctz(m);

@@ -97,42 +97,25 @@ inline int box_test2(const float (&rows)[6][2], const TraversalRay& r, float tfa
   return mask;
 }
 
-// Byte offsets of a ray's near and far rows within a node's planes (fast: rows of N floats;
-// compact: rows of N bytes), set once per ray (or stream), so that the node loop adds them to
-// the node's address instead of scaling row numbers at every node.
-struct RowOffsets {
-  uintptr_t near[3], far[3];
-};
-template <int N, bool kCompact>
-inline RowOffsets row_offsets(const int* near_row, const int* far_row) {
-  constexpr uintptr_t kRowBytes = kCompact ? N : N * sizeof(float);
-  RowOffsets o;
-  for (int a = 0; a < 3; ++a) {
-    o.near[a] = static_cast<uintptr_t>(near_row[a]) * kRowBytes;
-    o.far[a] = static_cast<uintptr_t>(far_row[a]) * kRowBytes;
-  }
-  return o;
-}
-
-// The near and far planes of a 4- or 8-wide node's children for rays of one octant, loaded
-// directly by row: no dynamically indexed register array, which would be spilled to the stack
-// on every node.
+// The near and far planes of a 4- or 8-wide node's children for rays of one octant
+// (`near_row`), loaded directly by row: no dynamically indexed register array, which would be
+// spilled to the stack on every node.
 template <int N, bool kCompact>
 struct NodePlanes {
   using L = LanesOf<N>;
   using V = typename L::V;
   using Node = std::conditional_t<kCompact, CompactNode<N>, FastNode<N>>;
-  static void load(const Node& n, const RowOffsets& o, V (&nears)[3], V (&fars)[3]) {
+  static void load(const Node& n, const int* near_row, const int* far_row, V (&nears)[3],
+                   V (&fars)[3]) {
     for (int a = 0; a < 3; ++a) {
+      const int nr = near_row[a], fr = far_row[a];
       if constexpr (kCompact) {
         const V scale = L::set1(n.scale[a]), origin = L::set1(n.origin[a]);
-        const uint8_t* q = &n.q[0][0];
-        nears[a] = L::decode_u8(q + o.near[a], scale, origin);
-        fars[a] = L::decode_u8(q + o.far[a], scale, origin);
+        nears[a] = L::decode_u8(n.q[nr], scale, origin);
+        fars[a] = L::decode_u8(n.q[fr], scale, origin);
       } else {
-        const char* rows = reinterpret_cast<const char*>(&n.bounds[0][0]);
-        nears[a] = L::load(reinterpret_cast<const float*>(rows + o.near[a]));
-        fars[a] = L::load(reinterpret_cast<const float*>(rows + o.far[a]));
+        nears[a] = L::load(n.bounds[nr]);
+        fars[a] = L::load(n.bounds[fr]);
       }
     }
   }
@@ -141,10 +124,9 @@ struct NodePlanes {
 template <int N, bool kCompact, bool kRobust>
 struct NodeTest {
   using Planes = NodePlanes<N, kCompact>;
-  static int run(const typename Planes::Node& n, const TraversalRay& r, const RowOffsets& o,
-                 float tfar, float* dist) {
+  static int run(const typename Planes::Node& n, const TraversalRay& r, float tfar, float* dist) {
     typename Planes::V nears[3], fars[3];
-    Planes::load(n, o, nears, fars);
+    Planes::load(n, r.near_row, r.far_row, nears, fars);
     return box_test<typename Planes::L, kRobust>(nears, fars, r, tfar, dist);
   }
 };
@@ -152,7 +134,7 @@ struct NodeTest {
 template <bool kCompact, bool kRobust>
 struct NodeTest<2, kCompact, kRobust> {
   using Node = std::conditional_t<kCompact, CompactNode<2>, FastNode<2>>;
-  static int run(const Node& n, const TraversalRay& r, const RowOffsets&, float tfar, float* dist) {
+  static int run(const Node& n, const TraversalRay& r, float tfar, float* dist) {
     if constexpr (kCompact) {
       float rows[6][2];
       for (int k = 0; k < 6; ++k) {
@@ -292,7 +274,6 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
   // assume may change the ray and tfar, reloading them at every node.
   const TraversalRay r = ray;
   float tfar = tfar_io;
-  const RowOffsets rows = row_offsets<N, kCompact>(r.near_row, r.far_row);
   bool found = false;
   StackEntry stack[kStackSize];
   int sp = 0;
@@ -301,7 +282,7 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
     while (!is_leaf(cur)) {
       const Node& node = *ref_ptr<Node>(cur);
       alignas(32) float dist[N];
-      int mask = NodeTest<N, kCompact, kRobust>::run(node, r, rows, tfar, dist);
+      int mask = NodeTest<N, kCompact, kRobust>::run(node, r, tfar, dist);
       if constexpr (kCompact) {
         // Slots past the last child decode to an inverted box, but a degenerate parent box
         // (all extents 0) would not reject them: mask them out explicitly.
