@@ -71,11 +71,11 @@ TEST(TunedStream, RayCountsAroundTheStreamSizeAndATreeThatIsOneLeaf) {
   const Mesh mesh = make_soup(4000, 29, 0.06f);
   Mesh one_triangle;
   one_triangle.add(Vec3f(0, 0, 0.5f), Vec3f(1, 0, 0.5f), Vec3f(0, 1, 0.5f));
-  const std::vector<Ray> all = shadow_rays(200, 31);
+  const std::vector<Ray> all = shadow_rays(1100, 31);
   for (const Mesh* m : {&mesh, static_cast<const Mesh*>(&one_triangle)}) {
     TunedBvhAccel tuned(parse_bvh_config("branching=8,sah_block_size=4,min_leaf=4,max_leaf=28"));
     tuned.build(m->view());
-    for (size_t n : {0, 1, 2, 3, 31, 32, 33, 64, 65, 200}) {
+    for (size_t n : {0, 1, 2, 3, 31, 32, 33, 63, 64, 65, 127, 128, 129, 200, 520, 1100}) {
       SCOPED_TRACE(n);
       expect_batch_occlusion_is_single_ray_occlusion(
           tuned, std::vector<Ray>(all.begin(), all.begin() + static_cast<long>(n)));
