@@ -12,7 +12,7 @@ namespace {
 using namespace detail;
 
 // Up to 64 rays share a traversal, one bit each: a node's fetch is shared by more rays than at
-// 32 (shadow batches 5-15 % faster on the shared scenes), and at 16 it is far worse.
+// 32 (shadow batches 3-15 % faster on the shared scenes; 128 was slower again).
 constexpr int kStreamSize = 64;
 using RayMask = uint64_t;
 // An octant with fewer rays than this goes ray by ray: a stream's set-up and its per-node loop
