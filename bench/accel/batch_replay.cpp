@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
@@ -146,17 +147,25 @@ struct Replayer {
 }  // namespace
 }  // namespace tuneray
 
-int main(int argc, char** argv) {
+namespace {
+
+int replay_main(int argc, char** argv) {
   using namespace tuneray;
-  if (argc < 2) {
+  const std::string first = argc >= 2 ? argv[1] : "";
+  if (argc < 2 || first == "--help" || first == "-h") {
     std::fprintf(stderr,
                  "usage: batch_replay SCENE [--scenes-dir D] [--bvh C] [--size WxH] [--spp N] "
-                 "[--repeats R] [--pollute KiB] [--single 0|1]\n");
-    return 2;
+                 "[--repeats R] [--only camera|bounce|shadow] [--pollute KiB] [--single 0|1] "
+                 "[--ab-env VAR=VALUE] [--ab-copies N]\n");
+    return argc < 2 ? 2 : 0;
   }
   std::string scene_spec = argv[1], scenes_dir, bvh, ab_env;
   int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0, ab_copies = 1;
   int only = -1;
+  if ((argc - 2) % 2 != 0) {
+    std::fprintf(stderr, "batch_replay: option %s needs a value\n", argv[argc - 1]);
+    return 2;
+  }
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--scenes-dir") {
@@ -280,4 +289,15 @@ int main(int argc, char** argv) {
   // Variants of the tuned kernels must give the same answers: compare this across binaries.
   std::printf("tuned answers checksum %016llx\n", static_cast<unsigned long long>(sums[1]));
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return replay_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "batch_replay: %s\n", e.what());
+    return 1;
+  }
 }
