@@ -173,13 +173,24 @@ int replay_main(int argc, char** argv) {
     } else if (key == "--bvh") {
       bvh = value;
     } else if (key == "--size") {
-      std::sscanf(value.c_str(), "%dx%d", &width, &height);
-    } else if (key == "--spp") {
-      spp = std::atoi(value.c_str());
-    } else if (key == "--repeats") {
-      repeats = std::atoi(value.c_str());
-    } else if (key == "--pollute") {
-      pollute_kib = std::atoi(value.c_str());
+      char end = 0;
+      if (std::sscanf(value.c_str(), "%dx%d%c", &width, &height, &end) != 2 || width <= 0 ||
+          height <= 0 || width > 16384 || height > 16384) {
+        std::fprintf(stderr, "batch_replay: --size takes WxH (1..16384 each), not '%s'\n",
+                     value.c_str());
+        return 2;
+      }
+    } else if (key == "--spp" || key == "--repeats" || key == "--pollute") {
+      char* end = nullptr;
+      const long n = std::strtol(value.c_str(), &end, 10);
+      const long lowest = key == "--pollute" ? 0 : 1;
+      if (end == value.c_str() || *end != '\0' || n < lowest || n > 1 << 20) {
+        std::fprintf(stderr, "batch_replay: %s takes a whole number from %ld to %d, not '%s'\n",
+                     key.c_str(), lowest, 1 << 20, value.c_str());
+        return 2;
+      }
+      int& target = key == "--spp" ? spp : (key == "--repeats" ? repeats : pollute_kib);
+      target = static_cast<int>(n);
     } else if (key == "--only") {
       for (int p = 0; p < kPhases; ++p)
         if (value == kPhaseName[p]) only = p;
