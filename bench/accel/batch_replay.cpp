@@ -30,13 +30,16 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "accel/embree_native.h"
 #include "accel/tuned_bvh.h"
 #include "render/blue_noise_sampler.h"
 #include "render/film.h"
+#include "render/image_size.h"
 #include "render/tile_renderer.h"
 #include "scene/load.h"
 
@@ -173,11 +176,10 @@ int replay_main(int argc, char** argv) {
     } else if (key == "--bvh") {
       bvh = value;
     } else if (key == "--size") {
-      char end = 0;
-      if (std::sscanf(value.c_str(), "%dx%d%c", &width, &height, &end) != 2 || width <= 0 ||
-          height <= 0 || width > 16384 || height > 16384) {
-        std::fprintf(stderr, "batch_replay: --size takes WxH (1..16384 each), not '%s'\n",
-                     value.c_str());
+      try {
+        std::tie(width, height) = parse_size(value);
+      } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "batch_replay: %s\n", e.what());
         return 2;
       }
     } else if (key == "--spp" || key == "--repeats" || key == "--pollute") {

@@ -1,15 +1,12 @@
-// Small parsers for option values shared by several commands.
+// Small parsers for option values shared by several commands (parse_size, in
+// render/image_size.h so the bench tools reach it too, comes with this header).
 #pragma once
 
 #include <CLI/CLI.hpp>
 
-#include <string>
-#include <utility>
+#include "render/image_size.h"
 
 namespace tuneray {
-
-// "640x360" → {640, 360}; throws std::invalid_argument with the text on anything else.
-std::pair<int, int> parse_size(const std::string& text);
 
 // Adds to every option of `app` and its subcommands a check that refuses a value reading as
 // NaN or infinity ("nan", "inf", "-Infinity", "1e999"): CLI11's range checks let NaN through,
