@@ -32,7 +32,8 @@ using A = QualityBenchOptions;
 // The baseline has every switch off (tiles, 12-byte sky texels, textures kept, per-type
 // material evaluation, PCG numbers, uniform sampling); each row switches one technique on;
 // "unbiased" switches on every technique that leaves the expected image alone, "defaults" is
-// QualityOptions{} (what the renderer does unless told otherwise), "all" switches on every one.
+// QualityOptions{} (what the renderer does unless told otherwise), "defaults+denoise" is what
+// turning the denoiser on by default would give, "all" switches on every one.
 const std::vector<Config>& configurations() {
   static const std::vector<Config> configs = {
       {"baseline", [](S&, const A&) {}},
@@ -50,6 +51,12 @@ const std::vector<Config>& configurations() {
       {"defaults",
        [](S& s, const A&) {
          s.quality = QualityOptions{};  // what `render` and RenderSettings{} use
+         s.one_texel = true;
+       }},
+      {"defaults+denoise",
+       [](S& s, const A&) {
+         s.quality = QualityOptions{};
+         s.quality.denoise = true;
          s.one_texel = true;
        }},
       {"all",

@@ -46,10 +46,12 @@ TEST_F(QualityBench, EveryConfigurationGetsARowPerFrameAndTheTruthIsShared) {
     EXPECT_GT(c["time_over_budget"].get<double>(), 0.0) << c["config"];
   }
   const std::vector<std::string> expected = {
-      "baseline",   "wavefront",  "sky-rgba", "one-texel", "branchless", "bluenoise", "adaptive",
-      "lowres-sky", "regularize", "clamp",    "denoise",   "unbiased",   "defaults",  "all"};
+      "baseline",  "wavefront", "sky-rgba",   "one-texel",        "branchless",
+      "bluenoise", "adaptive",  "lowres-sky", "regularize",       "clamp",
+      "denoise",   "unbiased",  "defaults",   "defaults+denoise", "all"};
   EXPECT_EQ(names, expected);
-  const std::vector<std::string> biased = {"lowres-sky", "regularize", "clamp", "denoise", "all"};
+  const std::vector<std::string> biased = {"lowres-sky", "regularize",       "clamp",
+                                           "denoise",    "defaults+denoise", "all"};
   for (const auto& c : configs) {
     if (std::find(biased.begin(), biased.end(), c["config"]) == biased.end()) {
       EXPECT_EQ(c["bias"].get<double>(), 0.0) << c["config"];
