@@ -26,6 +26,12 @@ void set_unbiased(QualitySwitches& s) {
   s.one_texel = true;
 }
 
+// What `render` does unless told otherwise: RenderSettings{} and one-texel folding.
+void set_defaults(QualitySwitches& s) {
+  s.quality = QualityOptions{};
+  s.one_texel = true;
+}
+
 using S = QualitySwitches;
 using A = QualityBenchOptions;
 
@@ -48,16 +54,11 @@ const std::vector<Config>& configurations() {
       {"clamp", [](S& s, const A& a) { set_clamp(s.quality, a); }},
       {"denoise", [](S& s, const A&) { s.quality.denoise = true; }},
       {"unbiased", [](S& s, const A&) { set_unbiased(s); }},
-      {"defaults",
-       [](S& s, const A&) {
-         s.quality = QualityOptions{};  // what `render` and RenderSettings{} use
-         s.one_texel = true;
-       }},
+      {"defaults", [](S& s, const A&) { set_defaults(s); }},
       {"defaults+denoise",
        [](S& s, const A&) {
-         s.quality = QualityOptions{};
+         set_defaults(s);
          s.quality.denoise = true;
-         s.one_texel = true;
        }},
       {"all",
        [](S& s, const A& a) {
