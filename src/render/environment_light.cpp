@@ -26,9 +26,8 @@ TexelRgba to_rgba(Color c) {
 Color from_rgba(const TexelRgba& t) {
   return {t.v[0], t.v[1], t.v[2]};
 }
-// Texel index of `dir` in a w x h equirectangular grid.
-size_t texel_index(Vec3f dir, int w, int h) {
-  Vec2f uv = EnvironmentLight::direction_to_uv(dir);
+// Texel index of the map coordinates uv in a w x h equirectangular grid.
+size_t texel_index(Vec2f uv, int w, int h) {
   int x = std::clamp(static_cast<int>(uv.x * w), 0, w - 1);
   int y = std::clamp(static_cast<int>(uv.y * h), 0, h - 1);
   return static_cast<size_t>(y) * w + x;
@@ -83,19 +82,17 @@ EnvironmentLight::EnvironmentLight(const Environment& env, const EnvironmentOpti
   if (!(mean_luminance_ > 0)) active_ = false;
 }
 
-Color EnvironmentLight::eval(Vec3f dir) const {
+Color EnvironmentLight::eval(const EnvironmentLookup& at) const {
   if (!active_) return Color(0.0f);
   if (!map_) return constant_;
-  if (!rgba_.empty()) return from_rgba(rgba_[texel_index(dir, map_->width(), map_->height())]);
-  Vec2f uv = direction_to_uv(dir);
-  int x = std::min(static_cast<int>(uv.x * map_->width()), map_->width() - 1);
-  int y = std::min(static_cast<int>(uv.y * map_->height()), map_->height() - 1);
-  return map_->at(std::max(x, 0), std::max(y, 0)) * scale_;
+  const size_t texel = texel_index(at.uv, map_->width(), map_->height());
+  if (!rgba_.empty()) return from_rgba(rgba_[texel]);
+  return map_->data()[texel] * scale_;
 }
 
-Color EnvironmentLight::eval_lowres(Vec3f dir) const {
-  if (lowres_.empty()) return eval(dir);
-  return from_rgba(lowres_[texel_index(dir, lowres_width_, lowres_height_)]);
+Color EnvironmentLight::eval_lowres(const EnvironmentLookup& at) const {
+  if (lowres_.empty()) return eval(at);
+  return from_rgba(lowres_[texel_index(at.uv, lowres_width_, lowres_height_)]);
 }
 
 EnvironmentSample EnvironmentLight::sample(Vec2f u) const {
@@ -108,23 +105,28 @@ EnvironmentSample EnvironmentLight::sample(Vec2f u) const {
     return s;
   }
   float pdf_uv = 0;
-  Vec2f uv = distribution_.sample(u, &pdf_uv);
+  size_t texel = 0;
+  Vec2f uv = distribution_.sample(u, &pdf_uv, &texel);
   float sin_theta = std::sin(uv.y * kPi);
   if (!(pdf_uv > 0) || !(sin_theta > 0)) return s;
   s.wi = uv_to_direction(uv);
   // Jacobian of the equirectangular map: d omega = 2 pi^2 sin(theta) du dv.
   s.pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
-  s.radiance = eval(s.wi);
+  // The texel the pdf was taken from, not a lookup of s.wi (which would search the map again
+  // and may round into the neighbour at a texel edge).
+  s.radiance = rgba_.empty() ? map_->data()[texel] * scale_ : from_rgba(rgba_[texel]);
   return s;
 }
 
-float EnvironmentLight::pdf(Vec3f dir) const {
+float EnvironmentLight::pdf(const EnvironmentLookup& at) const {
   if (!active_) return 0.0f;
   if (!map_) return kUniformSpherePdf;
-  Vec2f uv = direction_to_uv(dir);
-  float sin_theta = std::sin(uv.y * kPi);
+  // sin(theta) from cos(theta) = dir.y without the angle; (1 - y)(1 + y) keeps its precision
+  // near the poles, where 1 - y * y cancels.
+  const float y = std::clamp(at.dir.y, -1.0f, 1.0f);
+  const float sin_theta = std::sqrt((1.0f - y) * (1.0f + y));
   if (!(sin_theta > 0)) return 0.0f;
-  return distribution_.pdf(uv) / (2.0f * kPi * kPi * sin_theta);
+  return distribution_.pdf(at.uv) / (2.0f * kPi * kPi * sin_theta);
 }
 
 }  // namespace tuneray

@@ -24,6 +24,13 @@ struct alignas(16) TexelRgba {
   float v[4];
 };
 
+// Where a direction meets the map, found once for both eval() and pdf() of that direction (a
+// miss needs both, and the search costs an acos and an atan2).
+struct EnvironmentLookup {
+  Vec3f dir;
+  Vec2f uv;
+};
+
 struct EnvironmentOptions {
   bool rgba_texels = true;  // look texels up in an aligned RGBA copy (else the 12-byte Image)
   bool lowres = false;      // also build the 8x8-block-averaged map for eval_lowres()
@@ -42,12 +49,16 @@ class EnvironmentLight {
   // sampling uniform over the sphere, which the SIMD shading step does eight lanes at a time.
   bool is_constant() const { return active_ && !map_; }
   const Color& constant() const { return constant_; }
-  Color eval(Vec3f dir) const;
+  static EnvironmentLookup locate(Vec3f dir) { return {dir, direction_to_uv(dir)}; }
+  Color eval(Vec3f dir) const { return eval(locate(dir)); }
+  Color eval(const EnvironmentLookup& at) const;
   // The map averaged over 8x8 texel blocks (biased; for rays after the first bounce). Falls back
   // to eval() when the low-resolution map was not requested.
-  Color eval_lowres(Vec3f dir) const;
+  Color eval_lowres(Vec3f dir) const { return eval_lowres(locate(dir)); }
+  Color eval_lowres(const EnvironmentLookup& at) const;
   EnvironmentSample sample(Vec2f u) const;
-  float pdf(Vec3f dir) const;
+  float pdf(Vec3f dir) const { return pdf(locate(dir)); }
+  float pdf(const EnvironmentLookup& at) const;
   // Average radiance, for the light-selection weight.
   float mean_luminance() const { return mean_luminance_; }
 

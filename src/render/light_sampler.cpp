@@ -255,11 +255,6 @@ float LightSampler::pdf_triangle(uint32_t prim, Vec3f p, Vec3f light_point,
          (cos_light * emissive_[static_cast<size_t>(index)].area);
 }
 
-float LightSampler::pdf_environment(Vec3f dir) const {
-  if (env_index_ == SIZE_MAX) return 0.0f;
-  return selection_.pmf(env_index_) * environment_.pdf(dir);
-}
-
 Color LightSampler::emitted(uint32_t prim, Vec3f geometric_normal, Vec3f wo) const {
   const Material& m = scene_.materials[scene_.material_ids[prim]];
   if (!m.two_sided_emission && dot(geometric_normal, wo) <= 0) return Color(0.0f);

@@ -45,7 +45,6 @@ class LightSampler {
   // Solid-angle pdf of having sampled `light_point` on emissive triangle `prim` from p (for MIS
   // when a BSDF-sampled ray hits an emitter).
   float pdf_triangle(uint32_t prim, Vec3f p, Vec3f light_point, Vec3f light_normal) const;
-  float pdf_environment(Vec3f dir) const;
   // The probability of choosing the environment (0 without one).
   float environment_pmf() const {
     return env_index_ == SIZE_MAX ? 0.0f : selection_.pmf(env_index_);

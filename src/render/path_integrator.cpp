@@ -37,11 +37,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
   }
 }
 
-Color PathIntegrator::environment_radiance(Vec3f dir, bool specular_chain) const {
+Color PathIntegrator::environment_radiance(const EnvironmentLookup& at, bool specular_chain) const {
   // Low-resolution sky after a rough bounce, which blurs it anyway; the sky the camera sees
   // directly or in a mirror or through glass stays sharp.
-  return settings_.quality.lowres_sky && !specular_chain ? environment_.eval_lowres(dir)
-                                                         : environment_.eval(dir);
+  return settings_.quality.lowres_sky && !specular_chain ? environment_.eval_lowres(at)
+                                                         : environment_.eval(at);
 }
 
 Color PathIntegrator::finish(const PathWave& wave, size_t i, PathCounters& counters,
@@ -76,15 +76,16 @@ Color beta_of(const PathWave& wave, size_t i) {
 
 void PathIntegrator::shade_miss(PathWave& wave, size_t i) const {
   if (!environment_.active()) return;
-  const Vec3f dir = wave.ray(i).dir;
+  const EnvironmentLookup at = EnvironmentLight::locate(wave.ray(i).dir);
   const bool specular_chain = wave.flags[i] & PathWave::kSpecularChain;
-  Color le = environment_radiance(dir, specular_chain);
+  Color le = environment_radiance(at, specular_chain);
   float w = 1.0f;
   if (!(wave.flags[i] & PathWave::kPreviousWasDelta)) {
     if (settings_.strategy == LightStrategy::kLightOnly)
       w = 0.0f;
     else if (settings_.strategy == LightStrategy::kMis)
-      w = power_heuristic(wave.plane(PathWave::kPrevPdf)[i], lights_.pdf_environment(dir));
+      w = power_heuristic(wave.plane(PathWave::kPrevPdf)[i],
+                          lights_.environment_pmf() * environment_.pdf(at));
   }
   add_seen(wave, i, beta_of(wave, i) * le * w);
 }

@@ -79,7 +79,7 @@ class PathIntegrator {
   const RenderSettings& settings() const { return settings_; }
 
  private:
-  Color environment_radiance(Vec3f dir, bool specular_chain) const;
+  Color environment_radiance(const EnvironmentLookup& at, bool specular_chain) const;
   // The per-lane parts of shade8: a path whose ray left the scene (it ends), and the emission of
   // an emitter the ray hit, weighted against light sampling.
   void shade_miss(PathWave& wave, size_t i) const;

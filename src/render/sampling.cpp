@@ -80,6 +80,38 @@ Distribution1D::Distribution1D(std::span<const float> weights)
     for (size_t i = 0; i < n; ++i) cdf_[i + 1] = static_cast<float>(double(i + 1) / double(n));
   }
   if (n > 0) cdf_[n] = 1.0f;
+  if (n > kLinearSearchBins) {
+    const size_t entries = n * kGuideEntriesPerBin;
+    guide_.resize(entries + 1);
+    size_t bin = 0;
+    for (size_t k = 0; k < entries; ++k) {
+      const float u = static_cast<float>(k) / static_cast<float>(entries);
+      while (bin + 1 < n && cdf_[bin + 1] <= u) ++bin;
+      guide_[k] = static_cast<uint32_t>(bin);
+    }
+    guide_[entries] = static_cast<uint32_t>(n - 1);
+  }
+}
+
+size_t Distribution1D::guided_search(float u) const {
+  const size_t n = weights_.size();
+  const size_t entries = guide_.size() - 1;
+  // Clamped as a float first: a cast of a negative, huge or NaN float is undefined.
+  const float x = std::min(u * static_cast<float>(entries), static_cast<float>(entries - 1));
+  const size_t k = x > 0 ? std::min(static_cast<size_t>(x), entries - 1) : 0;
+  size_t i = guide_[k];
+  // u * entries rounds, so u may lie just below the entry's own u: step back if needed. Every
+  // step below keeps the invariant cdf_[i] <= u, so the result does not depend on the guide's
+  // accuracy, only the number of steps does.
+  while (i > 0 && cdf_[i] > u) --i;
+  size_t end = std::min<size_t>(guide_[k + 1] + 1, n);
+  if (end > i + 8) {  // many light bins in one entry: bisect them
+    auto it = std::upper_bound(cdf_.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                               cdf_.begin() + static_cast<std::ptrdiff_t>(end), u);
+    i = static_cast<size_t>(it - cdf_.begin()) - 1;
+  }
+  while (i + 1 < n && cdf_[i + 1] <= u) ++i;
+  return i;
 }
 
 size_t Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remapped) const {
@@ -98,9 +130,7 @@ size_t Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remappe
     for (size_t j = 1; j < n; ++j) starts_at_or_below += cdf_[j] <= u ? 1 : 0;
     i = starts_at_or_below;
   } else {
-    auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-    i = static_cast<size_t>(std::max<std::ptrdiff_t>(it - cdf_.begin() - 1, 0));
-    i = std::min(i, n - 1);
+    i = guided_search(u);
   }
   if (pmf_out) *pmf_out = pmf(i);
   if (u_remapped) {
@@ -157,16 +187,18 @@ Distribution2D::Distribution2D(std::span<const float> weights, int width, int he
   marginal_ = Distribution1D(row_totals);
 }
 
-Vec2f Distribution2D::sample(Vec2f u, float* pdf) const {
+Vec2f Distribution2D::sample(Vec2f u, float* pdf, size_t* cell) const {
   if (empty()) {
     if (pdf) *pdf = 0;
+    if (cell) *cell = 0;
     return {0, 0};
   }
   float pdf_v = 0, pdf_u = 0;
-  size_t row = 0;
+  size_t row = 0, column = 0;
   float v = marginal_.sample_continuous(u.y, &pdf_v, &row);
-  float x = conditional_[row].sample_continuous(u.x, &pdf_u);
+  float x = conditional_[row].sample_continuous(u.x, &pdf_u, &column);
   if (pdf) *pdf = pdf_v * pdf_u;
+  if (cell) *cell = row * static_cast<size_t>(width_) + column;
   return {x, v};
 }
 

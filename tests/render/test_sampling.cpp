@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -251,6 +252,40 @@ TEST(Distribution1D, LinearAndBinarySearchAgree) {
     size_t i = small.sample_discrete(step, nullptr);
     EXPECT_GT(small.pmf(i), 0.0f);
     EXPECT_EQ(large.sample_discrete(step / 8, nullptr), i) << step;
+  }
+}
+
+// Above the linear limit the bin comes from the guide table: it must be the bin a bisection of
+// the whole CDF finds (the last start <= u), for any u, on weights that crowd many light bins
+// into one guide entry (a dark region next to a sun) or leave long runs empty.
+TEST(Distribution1D, GuidedSearchAgreesWithBisection) {
+  std::vector<std::vector<float>> tables;
+  Pcg32 rng(29);
+  std::vector<float> random(1000);
+  for (float& w : random) w = rng.next_float() < 0.3f ? 0.0f : rng.next_float();
+  tables.push_back(random);
+  std::vector<float> sun(4096, 1e-6f);
+  for (int i = 2000; i < 2004; ++i) sun[i] = 1e5f;
+  tables.push_back(sun);
+  std::vector<float> runs(777, 0.0f);
+  for (size_t i = 0; i < runs.size(); i += 97) runs[i] = static_cast<float>(i + 1);
+  tables.push_back(runs);
+  tables.push_back(std::vector<float>(100, 0.0f));  // no mass: the uniform CDF
+  for (const auto& weights : tables) {
+    Distribution1D d(weights);
+    std::vector<float> cdf(weights.size() + 1);
+    for (size_t i = 0; i <= weights.size(); ++i) cdf[i] = d.cdf(i);
+    auto bisect = [&](float u) {
+      auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+      return std::min(static_cast<size_t>(it - cdf.begin()) - 1, weights.size() - 1);
+    };
+    std::vector<float> us;
+    for (int s = 0; s < 20000; ++s) us.push_back(rng.next_float());
+    for (size_t i = 0; i < weights.size(); ++i)  // on each step and beside it
+      for (float u : {cdf[i], std::nextafter(cdf[i], 0.0f), std::nextafter(cdf[i], 1.0f)})
+        if (u >= 0 && u < 1) us.push_back(u);
+    us.push_back(0x1.fffffep-1f);
+    for (float u : us) ASSERT_EQ(d.sample_discrete(u, nullptr), bisect(u)) << u;
   }
 }
 
