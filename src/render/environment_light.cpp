@@ -82,12 +82,14 @@ EnvironmentLight::EnvironmentLight(const Environment& env, const EnvironmentOpti
   if (!(mean_luminance_ > 0)) active_ = false;
 }
 
+Color EnvironmentLight::texel_radiance(size_t texel) const {
+  return rgba_.empty() ? map_->data()[texel] * scale_ : from_rgba(rgba_[texel]);
+}
+
 Color EnvironmentLight::eval(const EnvironmentLookup& at) const {
   if (!active_) return Color(0.0f);
   if (!map_) return constant_;
-  const size_t texel = texel_index(at.uv, map_->width(), map_->height());
-  if (!rgba_.empty()) return from_rgba(rgba_[texel]);
-  return map_->data()[texel] * scale_;
+  return texel_radiance(texel_index(at.uv, map_->width(), map_->height()));
 }
 
 Color EnvironmentLight::eval_lowres(const EnvironmentLookup& at) const {
@@ -114,7 +116,7 @@ EnvironmentSample EnvironmentLight::sample(Vec2f u) const {
   s.pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
   // The texel the pdf was taken from, not a lookup of s.wi (which would search the map again
   // and may round into the neighbour at a texel edge).
-  s.radiance = rgba_.empty() ? map_->data()[texel] * scale_ : from_rgba(rgba_[texel]);
+  s.radiance = texel_radiance(texel);
   return s;
 }
 

@@ -50,14 +50,14 @@ class EnvironmentLight {
   bool is_constant() const { return active_ && !map_; }
   const Color& constant() const { return constant_; }
   static EnvironmentLookup locate(Vec3f dir) { return {dir, direction_to_uv(dir)}; }
-  Color eval(Vec3f dir) const { return eval(locate(dir)); }
+  Color eval(Vec3f dir) const { return eval(lookup(dir)); }
   Color eval(const EnvironmentLookup& at) const;
   // The map averaged over 8x8 texel blocks (biased; for rays after the first bounce). Falls back
   // to eval() when the low-resolution map was not requested.
-  Color eval_lowres(Vec3f dir) const { return eval_lowres(locate(dir)); }
+  Color eval_lowres(Vec3f dir) const { return eval_lowres(lookup(dir)); }
   Color eval_lowres(const EnvironmentLookup& at) const;
   EnvironmentSample sample(Vec2f u) const;
-  float pdf(Vec3f dir) const { return pdf(locate(dir)); }
+  float pdf(Vec3f dir) const { return pdf(lookup(dir)); }
   float pdf(const EnvironmentLookup& at) const;
   // Average radiance, for the light-selection weight.
   float mean_luminance() const { return mean_luminance_; }
@@ -66,6 +66,13 @@ class EnvironmentLight {
   static Vec3f uv_to_direction(Vec2f uv);
 
  private:
+  // locate(dir) where there is a map; a constant environment needs no map coordinates.
+  EnvironmentLookup lookup(Vec3f dir) const {
+    return map_ ? locate(dir) : EnvironmentLookup{dir, {}};
+  }
+  // Radiance of texel y * width + x of the map (scaled).
+  Color texel_radiance(size_t texel) const;
+
   bool active_ = false;
   Color constant_{0.0f};
   const Image* map_ = nullptr;

@@ -81,26 +81,24 @@ Distribution1D::Distribution1D(std::span<const float> weights)
   }
   if (n > 0) cdf_[n] = 1.0f;
   if (n > kLinearSearchBins) {
-    const size_t entries = n * kGuideEntriesPerBin;
-    guide_.resize(entries + 1);
+    guide_.resize(n + 1);
     size_t bin = 0;
-    for (size_t k = 0; k < entries; ++k) {
-      const float u = static_cast<float>(k) / static_cast<float>(entries);
+    for (size_t k = 0; k < n; ++k) {
+      const float u = static_cast<float>(k) / static_cast<float>(n);
       while (bin + 1 < n && cdf_[bin + 1] <= u) ++bin;
       guide_[k] = static_cast<uint32_t>(bin);
     }
-    guide_[entries] = static_cast<uint32_t>(n - 1);
+    guide_[n] = static_cast<uint32_t>(n - 1);
   }
 }
 
 size_t Distribution1D::guided_search(float u) const {
   const size_t n = weights_.size();
-  const size_t entries = guide_.size() - 1;
   // Clamped as a float first: a cast of a negative, huge or NaN float is undefined.
-  const float x = std::min(u * static_cast<float>(entries), static_cast<float>(entries - 1));
-  const size_t k = x > 0 ? std::min(static_cast<size_t>(x), entries - 1) : 0;
+  const float x = std::min(u * static_cast<float>(n), static_cast<float>(n - 1));
+  const size_t k = x > 0 ? std::min(static_cast<size_t>(x), n - 1) : 0;
   size_t i = guide_[k];
-  // u * entries rounds, so u may lie just below the entry's own u: step back if needed. Every
+  // u * n rounds, so u may lie just below the entry's own u: step back if needed. Every
   // step below keeps the invariant cdf_[i] <= u, so the result does not depend on the guide's
   // accuracy, only the number of steps does.
   while (i > 0 && cdf_[i] > u) --i;

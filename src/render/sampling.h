@@ -66,10 +66,9 @@ class Distribution1D {
   float cdf(size_t i) const { return cdf_[i]; }
   // Up to this many bins sample_discrete counts the starts at or below u instead of searching.
   static constexpr size_t kLinearSearchBins = 16;
-  // Above it, the bin is found from a guide table of this many entries per bin: entry k holds
-  // the bin that u = k / entries falls in, so a search starts there and rarely takes a step,
-  // where a binary search over an environment map's row took ~10 mispredicted steps.
-  static constexpr size_t kGuideEntriesPerBin = 1;
+  // Above it, the bin is found from a guide table of one entry per bin: entry k holds the bin
+  // that u = k / n falls in, so a search starts there and rarely takes a step, where a binary
+  // search over an environment map's row took ~10 mispredicted steps.
   // Continuous: x in [0,1) with density pdf(x) = n * weights[bin] / total.
   float sample_continuous(float u, float* pdf, size_t* bin = nullptr) const;
   float pdf_continuous(float x) const;
@@ -80,7 +79,7 @@ class Distribution1D {
 
   std::vector<float> weights_;
   std::vector<float> cdf_;       // size n + 1, cdf_[0] = 0, cdf_[n] = 1
-  std::vector<uint32_t> guide_;  // empty up to kLinearSearchBins bins; else size G + 1
+  std::vector<uint32_t> guide_;  // empty up to kLinearSearchBins bins; else size n + 1
   float total_ = 0;
 };
 
