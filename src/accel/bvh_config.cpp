@@ -91,7 +91,8 @@ std::string bvh_config_ranges() {
          "  static=0|1 (default 0)\n"
          "  compact=0|1 (default 0)\n"
          "  robust=0|1 (default 0)\n"
-         "  collapse=0|1 (default 1; branching 2 or 4 stored as 8-wide nodes)";
+         "  collapse=0|1 (default 1; branching 2 or 4 stored as 8-wide nodes)\n"
+         "  reinsert=0|1 (default 0; branching 2 optimised by subtree reinsertion)";
 }
 
 void BvhConfig::set_cost_ratio(float ratio) {
@@ -130,7 +131,8 @@ std::string BvhConfig::to_string() const {
          ",min_leaf=" + std::to_string(min_leaf) + ",max_leaf=" + std::to_string(max_leaf) +
          ",trav_cost=" + format_float(trav_cost) + ",int_cost=" + format_float(int_cost) +
          ",static=" + (is_static ? "1" : "0") + ",compact=" + (compact ? "1" : "0") +
-         ",robust=" + (robust ? "1" : "0") + ",collapse=" + (collapse ? "1" : "0");
+         ",robust=" + (robust ? "1" : "0") + ",collapse=" + (collapse ? "1" : "0") +
+         ",reinsert=" + (reinsert ? "1" : "0");
 }
 
 BvhConfig parse_bvh_config(const std::string& text) {
@@ -181,6 +183,8 @@ BvhConfig parse_bvh_config(const std::string& text) {
       c.robust = parse_flag(key, value);
     } else if (key == "collapse") {
       c.collapse = parse_flag(key, value);
+    } else if (key == "reinsert") {
+      c.reinsert = parse_flag(key, value);
     } else {
       reject("unknown parameter '" + key + "'");
     }

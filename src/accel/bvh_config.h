@@ -27,10 +27,15 @@ struct BvhConfig {
   // true: a branching-2 or -4 tree is collapsed into 8-wide nodes after the build
   // (accel/bvh_collapse.h); no effect at branching 8.
   bool collapse = true;
+  // true: a branching-2 tree is optimised by moving subtrees where they lower its SAH cost
+  // before it is collapsed (accel/bvh_reinsert.h); no effect at branching 4 or 8.
+  bool reinsert = false;
 
   static constexpr int kCollapsedWidth = 8;
   // Whether the build's tree is collapsed (collapse on and fewer than 8 children a node).
   bool collapses() const { return collapse && branching < kCollapsedWidth; }
+  // Whether the build's tree is reinserted (reinsert on and a binary build).
+  bool reinserts() const { return reinsert && branching == 2; }
 
   float cost_ratio() const { return trav_cost / int_cost; }
   // Sets trav_cost = ratio, int_cost = 1; the ratio is clamped to [1/20, 20] so both costs stay
@@ -50,7 +55,7 @@ struct BvhConfig {
 
 // Parses any subset of the parameters from `key=value,...` (keys: quality, branching, max_depth,
 // sah_block_size, min_leaf, max_leaf, trav_cost, int_cost, cost_ratio, static, compact, robust,
-// collapse)
+// collapse, reinsert)
 // on top of the defaults, then validates. Throws std::invalid_argument listing the valid ranges.
 BvhConfig parse_bvh_config(const std::string& text);
 

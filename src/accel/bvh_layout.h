@@ -17,6 +17,10 @@ inline constexpr size_t whole_lines(size_t bytes) {
   return (bytes + kCacheLine - 1) / kCacheLine * kCacheLine;
 }
 
+// The deepest tree the traversal's stack holds (a path of this many nodes, 8 wide; Embree's
+// maxDepth is at most this too).
+inline constexpr int kMaxTraversalDepth = 64;
+
 using NodeRef = uintptr_t;
 inline constexpr NodeRef kLeafTag = 1;
 inline constexpr NodeRef kEmptyRef = 0;

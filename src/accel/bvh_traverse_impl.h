@@ -24,7 +24,7 @@ namespace tuneray::bvh::detail {
 // conservative (no ray slips between two adjacent boxes).
 constexpr float kRobustFarScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 
-constexpr int kStackSize = 64 * 8;
+constexpr int kStackSize = kMaxTraversalDepth * 8;
 
 // Relative slack of the SIMD triangle pre-test of closest-hit queries (see intersect_fast_leaf):
 // wide enough for the rounding of t * |det| against tfar * |det|.

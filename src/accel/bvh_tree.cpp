@@ -33,6 +33,13 @@ void Tree::adopt_collapsed(void* nodes, size_t bytes, NodeRef root, TreeShape sh
   collapsed_ = true;
 }
 
+void Tree::adopt_inner_nodes(void* nodes, size_t bytes, NodeRef root) {
+  if (buffer_) std::free(buffer_);
+  buffer_ = nodes;
+  buffer_bytes_ = bytes;
+  root_ = root;
+}
+
 void Tree::reset() {
   if (handle_) rtcReleaseBVH(handle_);
   if (buffer_) std::free(buffer_);

@@ -33,6 +33,9 @@ class Tree {
   // `leaves` (from aligned_alloc too, may be null): leaves the collapse made by merging others.
   void adopt_collapsed(void* nodes, size_t bytes, NodeRef root, TreeShape shape,
                        void* leaves = nullptr);
+  // Takes ownership of a buffer from aligned_alloc holding the inner nodes of `root`, whose
+  // leaves stay where they are (the Embree handle, kept); replaces the inner nodes held so far.
+  void adopt_inner_nodes(void* nodes, size_t bytes, NodeRef root);
   void reset();
 
   NodeRef root() const { return root_; }

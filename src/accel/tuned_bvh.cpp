@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "accel/bvh_collapse.h"
+#include "accel/bvh_reinsert.h"
 #include "accel/bvh_stream.h"
 #include "accel/bvh_walk.h"
 
@@ -25,8 +26,13 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   auto start = Clock::now();
   auto next = std::make_unique<bvh::Tree>();
   bvh::BuildResult result;
+  std::string reinsert_note;
   try {
     result = bvh::build_tree(geometry, config_, *device_, primitives_, *next);
+    // The traversal's stack holds a path of kMaxTraversalDepth nodes (8 wide after the
+    // collapse); the builder's max_depth bounds Embree's build, not this optimisation.
+    if (config_.reinserts())
+      reinsert_note = bvh::describe(bvh::reinsert_subtrees(*next, bvh::kMaxTraversalDepth));
     // Leaves merge up to the configuration's largest leaf, so max_leaf keeps its meaning, and
     // are priced with its costs.
     if (config_.collapses())
@@ -63,6 +69,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
     if (!s.empty()) notes += (notes.empty() ? "" : "; ") + s;
   };
   add(result.notes);
+  add(reinsert_note);
   if (tree_->collapsed()) add("collapsed into 8-wide nodes");
   if (tree_->relaid_out()) add("relaid out depth-first in one allocation");
   if (config_.quality == BvhQuality::kHigh)

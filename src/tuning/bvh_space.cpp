@@ -69,6 +69,9 @@ tuner::Space make_backend_space() {
   space.add_bool("collapse", true).add_condition("collapse", [tuned](const tuner::Config& c) {
     return tuned(c) && c.get_int("branching") < BvhConfig::kCollapsedWidth;
   });
+  space.add_bool("reinsert", false).add_condition("reinsert", [tuned](const tuner::Config& c) {
+    return tuned(c) && c.get_int("branching") == 2;
+  });
   return space;
 }
 
@@ -88,6 +91,7 @@ BvhConfig to_bvh_config(const tuner::Config& c) {
   // (at branching 8 the switch means nothing and keeps its default).
   b.collapse =
       has_param(c, "collapse") ? c.get_bool("collapse") : b.branching >= BvhConfig::kCollapsedWidth;
+  b.reinsert = has_param(c, "reinsert") && c.get_bool("reinsert");
   return b;
 }
 
@@ -107,6 +111,10 @@ tuner::Config to_tuner_config(const tuner::Space& space, const BvhConfig& b) {
     c.set_bool("collapse", b.collapse);
   else if (b.collapses())
     throw std::invalid_argument("collapse=1 is not part of this search space");
+  if (has_param(c, "reinsert"))
+    c.set_bool("reinsert", b.reinsert);
+  else if (b.reinserts())
+    throw std::invalid_argument("reinsert=1 is not part of this search space");
   if (has_param(c, "backend")) c.set_enum("backend", "tuned");
   return space.canonical(c);
 }

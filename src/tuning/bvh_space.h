@@ -26,8 +26,10 @@ tuner::Space make_bvh_space();
 // make_bvh_space(), active only under tuned (so every native point is one of three
 // configurations and the search reuses their samples), then collapse (default on; active under
 // tuned at branching 2 and 4; the BVH-only space lacks it and means collapse=0, as its databases
-// were measured). The first simplex spans both backends, so native Embree is measured early in
-// every search and the tuner can never settle on something it measured slower than native.
+// were measured), then reinsert (default off; active under tuned at branching 2; absent from the
+// BVH-only space, which means reinsert=0). The first simplex spans both backends, so native Embree
+// is measured early in every search and the tuner can never settle on something it measured slower
+// than native.
 tuner::Space make_backend_space();
 
 // Reads the BVH parameters of a configuration of either space (and of make_render_space()).

@@ -1,5 +1,5 @@
 // A sample of configurations covering every quality, every branching factor, compact on/off,
-// robust on/off, static on/off, collapse on/off, extreme leaf sizes and cost ratios.
+// robust on/off, static on/off, collapse on/off, reinsert on/off, extreme leaf sizes and cost ratios.
 #pragma once
 
 #include <string>
@@ -28,6 +28,9 @@ inline std::vector<std::string> sampled_configs() {
       "branching=2,collapse=1",
       "quality=high,branching=4,collapse=1,static=1",
       "branching=2,compact=1,robust=1,collapse=1",
+      "branching=2,sah_block_size=4,min_leaf=4,max_leaf=28,reinsert=1",
+      "quality=high,branching=2,reinsert=1,static=1",
+      "branching=2,compact=1,robust=1,collapse=0,reinsert=1",
   };
 }
 

@@ -18,18 +18,19 @@ namespace {
 
 const char* const kBvhParams[] = {"quality",  "branching", "max_depth",  "sah_block_size",
                                   "min_leaf", "max_leaf",  "cost_ratio", "static",
-                                  "compact",  "robust",    "collapse"};
+                                  "compact",  "robust",    "collapse",   "reinsert"};
 
 TEST(BackendSpace, BackendAndNativeQualityComeFirst) {
   tuner::Space space = make_backend_space();
   tuner::Space bvh = make_bvh_space();
-  ASSERT_EQ(space.size(), bvh.size() + 3);
+  ASSERT_EQ(space.size(), bvh.size() + 4);
   EXPECT_EQ(space.param(0).name, "backend");
   EXPECT_EQ(space.param(0).labels, (std::vector<std::string>{"tuned", "native"}));
   EXPECT_EQ(space.param(1).name, "native_quality");
   EXPECT_EQ(space.param(1).labels, (std::vector<std::string>{"low", "medium", "high"}));
   for (size_t i = 0; i < bvh.size(); ++i) EXPECT_EQ(space.param(i + 2).name, bvh.param(i).name);
-  EXPECT_EQ(space.param(space.size() - 1).name, "collapse");
+  EXPECT_EQ(space.param(space.size() - 2).name, "collapse");
+  EXPECT_EQ(space.param(space.size() - 1).name, "reinsert");
   // The default stays the study's: Embree's recommended build of our tree.
   EXPECT_EQ(to_accel_choice(space.default_config()), AccelChoice::tuned(BvhConfig{}));
   EXPECT_EQ(space.default_config().get_enum("native_quality"), "medium");
@@ -86,6 +87,24 @@ TEST(BackendSpace, CollapseCountsOnlyForTwoAndFourWideTrees) {
   narrow.collapse = false;
   EXPECT_EQ(to_bvh_config(to_tuner_config(space, narrow)), narrow);
   EXPECT_TRUE(to_bvh_config(space.default_config()).collapses());
+}
+
+TEST(BackendSpace, ReinsertCountsOnlyForBinaryTrees) {
+  tuner::Space space = make_backend_space();
+  EXPECT_FALSE(space.default_config().get_bool("reinsert"));
+  EXPECT_NE(space.parse("reinsert=true"), space.default_config());
+  EXPECT_NE(space.parse("collapse=false,reinsert=true"), space.parse("collapse=false"));
+  EXPECT_EQ(space.parse("branching=4,reinsert=true"), space.parse("branching=4"));
+  EXPECT_EQ(space.parse("branching=8,reinsert=true"), space.parse("branching=8"));
+  EXPECT_EQ(space.parse("backend=native,reinsert=true"), space.parse("backend=native"));
+  BvhConfig binary;
+  binary.reinsert = true;
+  EXPECT_EQ(to_bvh_config(to_tuner_config(space, binary)), binary);
+  EXPECT_TRUE(to_bvh_config(space.parse("reinsert=true")).reinserts());
+  // The BVH-only space has no such parameter: it means reinsert=0 and refuses reinsert=1.
+  EXPECT_FALSE(to_bvh_config(make_bvh_space().default_config()).reinsert);
+  binary.collapse = false;
+  EXPECT_THROW(to_tuner_config(make_bvh_space(), binary), std::invalid_argument);
 }
 
 TEST(BackendSpace, TheBvhOnlySpaceHasNoNativeChoice) {
