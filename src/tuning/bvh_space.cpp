@@ -146,8 +146,15 @@ BvhConfig embree_bvh8_config(BvhQuality quality) {
 
 std::vector<tuner::Config> tuning_seeds(const tuner::Space& space, bool build_time_counts) {
   std::vector<tuner::Config> seeds = {to_tuner_config(space, embree_bvh8_config())};
-  if (!build_time_counts)
-    seeds.push_back(to_tuner_config(space, embree_bvh8_config(BvhQuality::kHigh)));
+  if (build_time_counts) return seeds;
+  seeds.push_back(to_tuner_config(space, embree_bvh8_config(BvhQuality::kHigh)));
+  // The same leaves from a binary build whose subtrees are reinserted (spaces with the switch).
+  if (has_param(space.default_config(), "reinsert")) {
+    BvhConfig reinserted = embree_bvh8_config();
+    reinserted.branching = 2;
+    reinserted.reinsert = true;
+    seeds.push_back(to_tuner_config(space, reinserted));
+  }
   return seeds;
 }
 

@@ -107,6 +107,25 @@ TEST(BackendSpace, ReinsertCountsOnlyForBinaryTrees) {
   EXPECT_THROW(to_tuner_config(make_bvh_space(), binary), std::invalid_argument);
 }
 
+TEST(BackendSpace, SeedsAreEmbreesBvh8LeavesAndReinsertionOnlyWhereItsBuildIsFree) {
+  const tuner::Space space = make_backend_space();
+  const std::vector<tuner::Config> render = tuning_seeds(space, false);
+  ASSERT_EQ(render.size(), 3u);
+  EXPECT_EQ(to_bvh_config(render[0]), embree_bvh8_config());
+  EXPECT_EQ(to_bvh_config(render[1]), embree_bvh8_config(BvhQuality::kHigh));
+  const BvhConfig reinserted = to_bvh_config(render[2]);
+  EXPECT_TRUE(reinserted.reinserts());
+  EXPECT_TRUE(reinserted.collapses());
+  EXPECT_EQ(reinserted.min_leaf, 4);
+  EXPECT_EQ(reinserted.max_leaf, 28);
+  EXPECT_EQ(reinserted.sah_block_size, 4);
+  const std::vector<tuner::Config> total = tuning_seeds(space, true);
+  ASSERT_EQ(total.size(), 1u);
+  EXPECT_EQ(to_bvh_config(total[0]), embree_bvh8_config());
+  // The BVH-only space has no reinsertion to seed.
+  EXPECT_EQ(tuning_seeds(make_bvh_space(), false).size(), 2u);
+}
+
 TEST(BackendSpace, TheBvhOnlySpaceHasNoNativeChoice) {
   tuner::Space bvh = make_bvh_space();
   EXPECT_EQ(to_accel_choice(bvh.default_config()),
