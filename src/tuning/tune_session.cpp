@@ -50,9 +50,11 @@ tuner::Space make_tune_space(const TuneOptions& o, const RenderSettings& setting
 
 std::vector<tuner::Config> race_entrants(const tuner::Space& space, const tuner::Config& best,
                                          const std::vector<tuner::Config>& finalists,
-                                         bool native_in_space) {
+                                         bool native_in_space,
+                                         const std::vector<tuner::Config>& seeds) {
   std::vector<tuner::Config> entrants{best};
   entrants.insert(entrants.end(), finalists.begin(), finalists.end());
+  entrants.insert(entrants.end(), seeds.begin(), seeds.end());
   if (native_in_space) entrants.push_back(to_tuner_config(space, AccelChoice::native()));
   entrants.push_back(space.default_config());
   return entrants;
@@ -247,8 +249,9 @@ TuneReport run_tune_session(const TuneOptions& o,
     }
     tuner::Config best = tuner.best(state);
     if (o.finalists > 0) {
-      const std::vector<tuner::Config> finalists = race_entrants(
-          space, best, tuner.finalists(state, static_cast<size_t>(o.finalists)), o.native_in_space);
+      const std::vector<tuner::Config> finalists =
+          race_entrants(space, best, tuner.finalists(state, static_cast<size_t>(o.finalists)),
+                        o.native_in_space, options.search_seeds);
       best = race(finalists, cameras[ci], r);
     }
     const Candidate chosen_candidate{to_accel_choice(best), work_of(best)};

@@ -117,11 +117,16 @@ tuner::Space make_tune_space(const TuneOptions& options, const RenderSettings& s
 // space) and the default configuration, even when a variant of native (quality=low) is a finalist:
 // otherwise a race among variants can choose one slower than either yardstick, and the cameras
 // that exploit that choice inherit it (lost-empire: native low at 0.91-0.96 of native medium on
-// five cameras, native chosen on three where the default was 1.08x faster). The race drops
-// duplicates.
+// five cameras, native chosen on three where the default was 1.08x faster). The search seeds
+// (tuning_seeds) race too, after the finalists: a search measures each seed once, in its first
+// simplex, and one unlucky frame drops a seed that is faster at the median (conference: the
+// reinserted binary tree, 1.09x native over 12 interleaved rounds, measured once at 0.8x of the
+// search's best and never again), and a camera that exploits a prediction measures no seed at
+// all. The race drops duplicates.
 std::vector<tuner::Config> race_entrants(const tuner::Space& space, const tuner::Config& best,
                                          const std::vector<tuner::Config>& finalists,
-                                         bool native_in_space);
+                                         bool native_in_space,
+                                         const std::vector<tuner::Config>& seeds = {});
 
 // What a camera keeps after the comparison, given the chosen configuration's ratios
 // (`speedup`: default cost / chosen cost; `vs_native`: native cost / chosen cost, each a median

@@ -81,6 +81,15 @@ TEST(TuneNative, TheRaceAlwaysHasNativeMediumAndTheDefault) {
   EXPECT_EQ(entrants[3], AccelChoice::native().to_string());
   EXPECT_EQ(entrants[4], AccelChoice::tuned(BvhConfig{}).to_string());
 
+  // The search seeds race after the finalists, before the yardsticks.
+  const std::vector<tuner::Config> seeds = tuning_seeds(space, false);
+  const std::vector<std::string> seeded =
+      names(race_entrants(space, native_low, {native_low, tuned_wide}, true, seeds));
+  ASSERT_EQ(seeded.size(), 5u + seeds.size());
+  for (size_t i = 0; i < seeds.size(); ++i)
+    EXPECT_EQ(seeded[3 + i], to_accel_choice(seeds[i]).to_string());
+  EXPECT_EQ(seeded[3 + seeds.size()], AccelChoice::native().to_string());
+
   o.native_in_space = false;
   const tuner::Space tuned_space = make_tune_space(o, RenderSettings{});
   const tuner::Config best = to_tuner_config(tuned_space, AccelChoice::tuned(wide));
@@ -215,14 +224,18 @@ TEST(TuneNative, TheFinalistsRaceNativeAndTheWinnerIsChosen) {
   TuneReport report = run_tune_session(o);
   ASSERT_EQ(report.cameras.size(), 1u);
   const CameraTuneResult& c = report.cameras[0];
-  EXPECT_EQ(c.race_candidates, 2);
-  EXPECT_EQ(c.race_frames, 2 * (2 + 1));
-  const std::string raced = c.race_changed_choice ? AccelChoice::native().to_string()
-                                                  : AccelChoice::tuned(BvhConfig{}).to_string();
-  if (c.fallback.empty()) {
-    EXPECT_EQ(c.config, raced);
-  } else {  // the race's winner measured slower than the other yardstick afterwards
-    EXPECT_EQ(c.rejected, raced);
+  // One frame, so the tuner's best is the default; it races native and the search seeds.
+  const tuner::Space space = make_tune_space(o, RenderSettings{});
+  const std::vector<tuner::Config> seeds = tuning_seeds(space, false);
+  std::set<std::string> entrants = {AccelChoice::native().to_string(),
+                                    AccelChoice::tuned(BvhConfig{}).to_string()};
+  for (const tuner::Config& seed : seeds) entrants.insert(to_accel_choice(seed).to_string());
+  EXPECT_EQ(c.race_candidates, static_cast<int>(entrants.size()));
+  EXPECT_EQ(c.race_frames, c.race_candidates * (2 + 1));
+  const std::string raced = c.fallback.empty() ? c.config : c.rejected;
+  EXPECT_EQ(entrants.count(raced), 1u) << raced;
+  EXPECT_EQ(c.race_changed_choice, raced != AccelChoice::tuned(BvhConfig{}).to_string());
+  if (!c.fallback.empty()) {  // the race's winner measured slower than a yardstick afterwards
     EXPECT_EQ(c.config, c.fallback == "native" ? AccelChoice::native().to_string()
                                                : AccelChoice::tuned(BvhConfig{}).to_string());
     EXPECT_NE(c.config, raced);
@@ -238,13 +251,14 @@ TEST(TuneNative, TheFinalistsRaceNativeAndTheWinnerIsChosen) {
     EXPECT_EQ(native, o.race_rounds);
   }
 
-  // Without native in the space there is nothing to race against.
+  // Without native in the space the default races the seeds alone.
   TuneOptions tuned_only = o;
   tuned_only.native_in_space = false;
   const CameraTuneResult t = run_tune_session(tuned_only).cameras.at(0);
-  EXPECT_EQ(t.race_candidates, 1);
-  EXPECT_EQ(t.race_frames, 0);
-  EXPECT_FALSE(t.race_changed_choice);
+  const size_t tuned_seeds =
+      tuning_seeds(make_tune_space(tuned_only, RenderSettings{}), false).size();
+  EXPECT_EQ(t.race_candidates, static_cast<int>(1 + tuned_seeds));
+  EXPECT_EQ(t.race_frames, t.race_candidates * (2 + 1));
   EXPECT_EQ(t.backend, "tuned");
 }
 
