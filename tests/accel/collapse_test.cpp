@@ -12,6 +12,7 @@
 #include "accel/bvh_node_box.h"
 #include "accel/bvh_walk.h"
 #include "accel/tuned_bvh.h"
+#include "same_answers.h"
 #include "test_geometry.h"
 
 namespace tuneray::test {
@@ -206,20 +207,7 @@ TEST_F(Collapse, RaysFindExactlyWhatTheUncollapsedTreeFinds) {
     plain.build(mesh_->view());
     BuildStats stats = wide.build(mesh_->view());
     EXPECT_LT(stats.node_count, plain.tree_stats().node_count);
-    size_t hits = 0, blocked = 0;
-    for (const Ray& ray : rays) {
-      Hit a, b;
-      const bool found_a = plain.intersect(ray, a), found_b = wide.intersect(ray, b);
-      ASSERT_EQ(found_a, found_b);
-      EXPECT_EQ(a.prim, b.prim);
-      EXPECT_EQ(a.t, b.t);
-      EXPECT_EQ(a.u, b.u);
-      EXPECT_EQ(a.v, b.v);
-      hits += found_a ? 1 : 0;
-      const bool occluded = plain.occluded(ray);
-      EXPECT_EQ(occluded, wide.occluded(ray));
-      blocked += occluded ? 1 : 0;
-    }
+    const auto [hits, blocked] = expect_same_answers(plain, wide, rays);
     // Both answers occur (the rays end inside the soup).
     EXPECT_GT(hits, 0u);
     EXPECT_LT(hits, rays.size());

@@ -10,6 +10,7 @@
 #include "accel/bvh_reinsert.h"
 #include "accel/bvh_walk.h"
 #include "accel/tuned_bvh.h"
+#include "same_answers.h"
 #include "test_geometry.h"
 
 namespace tuneray::test {
@@ -122,18 +123,7 @@ TEST(Reinsert, RaysFindExactlyWhatTheTreeAsBuiltFinds) {
     EXPECT_NE(stats.notes.find("reinsertion"), std::string::npos) << stats.notes;
     EXPECT_EQ(moved.tree_stats().references, plain.tree_stats().references);
     EXPECT_NE(stats.sah_cost, plain_stats.sah_cost);
-    size_t hits = 0;
-    for (const Ray& ray : rays) {
-      Hit a, b;
-      const bool found_a = plain.intersect(ray, a), found_b = moved.intersect(ray, b);
-      ASSERT_EQ(found_a, found_b);
-      EXPECT_EQ(a.prim, b.prim);
-      EXPECT_EQ(a.t, b.t);
-      EXPECT_EQ(a.u, b.u);
-      EXPECT_EQ(a.v, b.v);
-      EXPECT_EQ(plain.occluded(ray), moved.occluded(ray));
-      hits += found_a ? 1 : 0;
-    }
+    const size_t hits = expect_same_answers(plain, moved, rays).hits;
     EXPECT_GT(hits, 0u);
     EXPECT_LT(hits, rays.size());
   }

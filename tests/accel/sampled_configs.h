@@ -1,5 +1,6 @@
 // A sample of configurations covering every quality, every branching factor, compact on/off,
-// robust on/off, static on/off, collapse on/off, reinsert on/off, extreme leaf sizes and cost ratios.
+// robust on/off, static on/off, collapse on/off, reinsert on/off, extreme leaf sizes and cost
+// ratios.
 #pragma once
 
 #include <string>
