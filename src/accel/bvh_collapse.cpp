@@ -7,6 +7,7 @@
 #include <new>
 #include <stdexcept>
 
+#include "accel/bvh_collapse_plan.h"
 #include "accel/bvh_node_box.h"
 #include "math/ray.h"
 
@@ -25,7 +26,8 @@ class Collapser {
   using Source = NodeOf<N, kCompact>;
   using Wide = NodeOf<kWide, kCompact>;
 
-  static void run(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost) {
+  static void run(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost,
+                  bool optimal) {
     // Every wide node takes the place of at least one source node, so the source's count bounds
     // the buffer; pages past the nodes written are never touched.
     const size_t bytes = max_inner_nodes * whole_lines(sizeof(Wide));
@@ -48,7 +50,10 @@ class Collapser {
       c.leaf_base_ = leaves.get();
       c.leaf_capacity_ = leaf_capacity;
     }
-    const NodeRef root = c.collapse(tree.root());
+    if (optimal)
+      c.plan_ = std::make_unique<CollapsePlan<N, kCompact>>(tree.root(), c.flatten_limit_,
+                                                            merge_limit > 1 ? pack_cost : 1.0f);
+    const NodeRef root = c.plan_ ? c.collapse_planned(c.plan_->root()) : c.collapse(tree.root());
     TreeShape shape = tree.shape();
     shape.width = kWide;
     if (c.leaf_used_ == 0) leaves.reset();
@@ -64,16 +69,17 @@ class Collapser {
     int children;   // of a source inner node; 0 for a leaf
     int triangles;  // of a leaf
     int parts;      // source leaves a leaf is made of (1 unless merged)
+    int plan;       // the source node's index in plan_, or -1 without a plan
     NodeRef part[kMaxParts];
   };
 
-  Slot slot(const Source& parent, int i) const {
-    Slot s{child_box<N, kCompact>(parent, i), parent.child[i], 0.0f, 0, 0, 1, {}};
+  Slot slot(const Source& parent, int i, int plan = -1) const {
+    Slot s{child_box<N, kCompact>(parent, i), parent.child[i], 0.0f, 0, 0, 1, plan, {}};
     s.area = s.box.surface_area();
     s.part[0] = s.ref;
     if (is_leaf(s.ref)) {
       s.triangles = static_cast<int>(ref_ptr<LeafHeader>(s.ref)->prim_count);
-    } else if (flatten_limit_ > 0 && flattens(s.ref, s.area)) {
+    } else if (plan >= 0 ? plan_->as_leaf(plan) : flatten_limit_ > 0 && flattens(s.ref, s.area)) {
       s.parts = 0;
       collect_leaves(s.ref, s);
     } else {
@@ -242,6 +248,11 @@ class Collapser {
       open_children(slots, count);
     } while (merge_limit_ > 1 && merge_leaves(slots, count));
 
+    return write_node(slots, count);
+  }
+
+  // Writes a wide node of these children, then, depth first, the wide nodes below it.
+  NodeRef write_node(const Slot* slots, int count) {
     if (used_ == capacity_) throw std::logic_error("BVH collapse: more nodes than the build made");
     auto* node = reinterpret_cast<Wide*>(base_ + used_++ * whole_lines(sizeof(Wide)));
     clear_node<kWide, kCompact>(*node);
@@ -251,7 +262,7 @@ class Collapser {
     for (int i = 0; i < count; ++i) {
       const Slot& c = slots[i];
       if (c.children > 0)
-        node->child[i] = collapse(c.ref);
+        node->child[i] = c.plan >= 0 ? collapse_planned(c.plan) : collapse(c.ref);
       else  // a leaf as built, or one made of several (merged, or an inner node flattened)
         node->child[i] = c.parts == 1 && is_leaf(c.ref) ? c.ref : write_merged_leaf(c);
     }
@@ -270,16 +281,32 @@ class Collapser {
       if (best < 0) break;
       // The opened node's first child takes its slot, the others go to the end.
       const Source& opened = *ref_ptr<Source>(slots[best].ref);
+      const int opened_plan = slots[best].plan;
       int target = best;
       for (int i = 0; i < N; ++i) {
         if (opened.child[i] == kEmptyRef) continue;
-        slots[target] = slot(opened, i);
+        slots[target] = slot(opened, i, opened_plan >= 0 ? plan_->child(opened_plan, i) : -1);
         target = count++;
       }
       --count;  // the opened node's own slot was reused
     }
   }
 
+  // Writes the wide node the plan makes of the source inner node at plan index `index`.
+  NodeRef collapse_planned(int index) {
+    Slot slots[kWide];
+    int count = 0;
+    plan_->spread(index, [&](const Source& parent, int i, int child) {
+      slots[count++] = slot(parent, i, child);
+    });
+    // Leaves merge as below, but the slots they free stay free: the greedy rule would open a
+    // child the plan kept whole, each of its children then taking one slot where the plan gave
+    // some more, which costs more than the visit it saves.
+    if (merge_limit_ > 1) merge_leaves(slots, count);
+    return write_node(slots, count);
+  }
+
+  std::unique_ptr<const CollapsePlan<N, kCompact>> plan_;
   char* base_ = nullptr;
   size_t used_ = 0, capacity_ = 0;
   int merge_limit_ = 0;
@@ -290,24 +317,25 @@ class Collapser {
 };
 
 template <bool kCompact>
-void collapse(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost) {
+void collapse(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost, bool optimal) {
   if (tree.shape().width == 2)
-    Collapser<2, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost);
+    Collapser<2, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost, optimal);
   else
-    Collapser<4, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost);
+    Collapser<4, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost, optimal);
 }
 
 }  // namespace
 
-void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to, float pack_cost) {
+void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to, float pack_cost,
+                      bool optimal) {
   const NodeRef root = tree.root();
   if (tree.shape().width >= kWide || root == kEmptyRef || is_leaf(root) || tree.relaid_out() ||
       tree.collapsed())
     return;
   if (tree.shape().compact)
-    collapse<true>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost);
+    collapse<true>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost, optimal);
   else
-    collapse<false>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost);
+    collapse<false>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost, optimal);
 }
 
 }  // namespace tuneray::bvh

@@ -92,6 +92,8 @@ std::string bvh_config_ranges() {
          "  compact=0|1 (default 0)\n"
          "  robust=0|1 (default 0)\n"
          "  collapse=0|1 (default 1; branching 2 or 4 stored as 8-wide nodes)\n"
+         "  optimal_collapse=0|1 (default 0; the collapse's wide nodes chosen by an SAH-optimal "
+         "plan)\n"
          "  reinsert=0|1 (default 0; branching 2 optimised by subtree reinsertion)";
 }
 
@@ -132,6 +134,7 @@ std::string BvhConfig::to_string() const {
          ",trav_cost=" + format_float(trav_cost) + ",int_cost=" + format_float(int_cost) +
          ",static=" + (is_static ? "1" : "0") + ",compact=" + (compact ? "1" : "0") +
          ",robust=" + (robust ? "1" : "0") + ",collapse=" + (collapse ? "1" : "0") +
+         ",optimal_collapse=" + (optimal_collapse ? "1" : "0") +
          ",reinsert=" + (reinsert ? "1" : "0");
 }
 
@@ -183,6 +186,8 @@ BvhConfig parse_bvh_config(const std::string& text) {
       c.robust = parse_flag(key, value);
     } else if (key == "collapse") {
       c.collapse = parse_flag(key, value);
+    } else if (key == "optimal_collapse") {
+      c.optimal_collapse = parse_flag(key, value);
     } else if (key == "reinsert") {
       c.reinsert = parse_flag(key, value);
     } else {

@@ -27,6 +27,9 @@ struct BvhConfig {
   // true: a branching-2 or -4 tree is collapsed into 8-wide nodes after the build
   // (accel/bvh_collapse.h); no effect at branching 8.
   bool collapse = true;
+  // true: the collapse chooses each wide node's children by an SAH-optimal plan instead of the
+  // greedy rule (accel/bvh_collapse_plan.h); no effect without a collapse.
+  bool optimal_collapse = false;
   // true: a branching-2 tree is optimised by moving subtrees where they lower its SAH cost
   // before it is collapsed (accel/bvh_reinsert.h); no effect at branching 4 or 8.
   bool reinsert = false;
@@ -34,6 +37,8 @@ struct BvhConfig {
   static constexpr int kCollapsedWidth = 8;
   // Whether the build's tree is collapsed (collapse on and fewer than 8 children a node).
   bool collapses() const { return collapse && branching < kCollapsedWidth; }
+  // Whether that collapse follows the SAH-optimal plan.
+  bool collapses_optimally() const { return optimal_collapse && collapses(); }
   // Whether the build's tree is reinserted (reinsert on and a binary build).
   bool reinserts() const { return reinsert && branching == 2; }
 
@@ -55,7 +60,7 @@ struct BvhConfig {
 
 // Parses any subset of the parameters from `key=value,...` (keys: quality, branching, max_depth,
 // sah_block_size, min_leaf, max_leaf, trav_cost, int_cost, cost_ratio, static, compact, robust,
-// collapse, reinsert)
+// collapse, optimal_collapse, reinsert)
 // on top of the defaults, then validates. Throws std::invalid_argument listing the valid ranges.
 BvhConfig parse_bvh_config(const std::string& text);
 

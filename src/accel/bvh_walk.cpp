@@ -35,6 +35,7 @@ struct Walker {
       s.max_leaf_size = std::max<size_t>(s.max_leaf_size, leaf->prim_count);
       s.leaf_bytes += leaf_bytes(leaf, kCompact);
       s.sah_cost += isect * area * leaf->prim_count;
+      s.pack_sah_cost += isect * area * ((leaf->prim_count + 3) / 4);
       if (!kCompact && leaf_code(ref) != leaf->pack_count) s.leaf_code_mismatches++;
       return;
     }
@@ -42,6 +43,7 @@ struct Walker {
     s.node_count++;
     s.node_bytes += sizeof(Node);
     s.sah_cost += trav * area;
+    s.pack_sah_cost += trav * area;
     for (int i = 0; i < N; ++i) {
       if (n.child[i] == kEmptyRef) continue;
       stats(n.child[i], child_box(n, i).surface_area(), level + 1, trav, isect, s);
@@ -57,7 +59,10 @@ struct Walker {
     }
     double area = node_box(*ref_ptr<Node>(root)).surface_area();
     stats(root, area, 1, trav, isect, s);
-    if (area > 0) s.sah_cost /= area;
+    if (area > 0) {
+      s.sah_cost /= area;
+      s.pack_sah_cost /= area;
+    }
     return s;
   }
 

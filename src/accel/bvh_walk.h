@@ -15,6 +15,9 @@ struct TreeStats {
   size_t max_leaf_size = 0;
   int depth = 0;        // levels of inner nodes + the leaf level
   double sah_cost = 0;  // trav * sum A(node)/A(root) + int * sum A(leaf)/A(root) * refs
+  // The same with a leaf's triangles counted in packs of 4, as the fast leaves test them (what
+  // the collapse minimises).
+  double pack_sah_cost = 0;
   size_t node_bytes = 0;
   size_t leaf_bytes = 0;
   // Fast leaves whose reference does not carry their header's pack count (always 0 for a

@@ -37,7 +37,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
     // are priced with its costs.
     if (config_.collapses())
       bvh::collapse_to_wide(*next, result.inner_nodes, config_.max_leaf,
-                            config_.int_cost / config_.trav_cost);
+                            config_.int_cost / config_.trav_cost, config_.optimal_collapse);
     if (config_.is_static) bvh::relayout_depth_first(*next);
   } catch (...) {
     tree_.reset();
@@ -70,7 +70,9 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   };
   add(result.notes);
   add(reinsert_note);
-  if (tree_->collapsed()) add("collapsed into 8-wide nodes");
+  if (tree_->collapsed())
+    add(config_.optimal_collapse ? "collapsed into 8-wide nodes by the SAH-optimal plan"
+                                 : "collapsed into 8-wide nodes");
   if (tree_->relaid_out()) add("relaid out depth-first in one allocation");
   if (config_.quality == BvhQuality::kHigh)
     add("spatial splits: " + std::to_string(result.spatial_splits) + ", references " +

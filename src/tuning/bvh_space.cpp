@@ -72,6 +72,11 @@ tuner::Space make_backend_space() {
   space.add_bool("reinsert", false).add_condition("reinsert", [tuned](const tuner::Config& c) {
     return tuned(c) && c.get_int("branching") == 2;
   });
+  space.add_bool("optimal_collapse", false)
+      .add_condition("optimal_collapse", [tuned](const tuner::Config& c) {
+        return tuned(c) && c.get_int("branching") < BvhConfig::kCollapsedWidth &&
+               c.get_bool("collapse");
+      });
   return space;
 }
 
@@ -92,6 +97,7 @@ BvhConfig to_bvh_config(const tuner::Config& c) {
   b.collapse =
       has_param(c, "collapse") ? c.get_bool("collapse") : b.branching >= BvhConfig::kCollapsedWidth;
   b.reinsert = has_param(c, "reinsert") && c.get_bool("reinsert");
+  b.optimal_collapse = has_param(c, "optimal_collapse") && c.get_bool("optimal_collapse");
   return b;
 }
 
@@ -115,6 +121,10 @@ tuner::Config to_tuner_config(const tuner::Space& space, const BvhConfig& b) {
     c.set_bool("reinsert", b.reinsert);
   else if (b.reinserts())
     throw std::invalid_argument("reinsert=1 is not part of this search space");
+  if (has_param(c, "optimal_collapse"))
+    c.set_bool("optimal_collapse", b.optimal_collapse);
+  else if (b.collapses_optimally())
+    throw std::invalid_argument("optimal_collapse=1 is not part of this search space");
   if (has_param(c, "backend")) c.set_enum("backend", "tuned");
   return space.canonical(c);
 }
@@ -148,11 +158,14 @@ std::vector<tuner::Config> tuning_seeds(const tuner::Space& space, bool build_ti
   std::vector<tuner::Config> seeds = {to_tuner_config(space, embree_bvh8_config())};
   if (build_time_counts) return seeds;
   seeds.push_back(to_tuner_config(space, embree_bvh8_config(BvhQuality::kHigh)));
-  // The same leaves from a binary build whose subtrees are reinserted (spaces with the switch).
-  if (has_param(space.default_config(), "reinsert")) {
+  // The same leaves from a binary build whose subtrees are reinserted, collapsed by the
+  // SAH-optimal plan (spaces with the switches).
+  const tuner::Config defaults = space.default_config();
+  if (has_param(defaults, "reinsert")) {
     BvhConfig reinserted = embree_bvh8_config();
     reinserted.branching = 2;
     reinserted.reinsert = true;
+    reinserted.optimal_collapse = has_param(defaults, "optimal_collapse");
     seeds.push_back(to_tuner_config(space, reinserted));
   }
   return seeds;

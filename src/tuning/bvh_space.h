@@ -27,9 +27,10 @@ tuner::Space make_bvh_space();
 // configurations and the search reuses their samples), then collapse (default on; active under
 // tuned at branching 2 and 4; the BVH-only space lacks it and means collapse=0, as its databases
 // were measured), then reinsert (default off; active under tuned at branching 2; absent from the
-// BVH-only space, which means reinsert=0). The first simplex spans both backends, so native Embree
-// is measured early in every search and the tuner can never settle on something it measured slower
-// than native.
+// BVH-only space, which means reinsert=0), then optimal_collapse (default off; active where the
+// tree is collapsed; absent from the BVH-only space, which means 0). The first simplex spans both
+// backends, so native Embree is measured early in every search and the tuner can never settle on
+// something it measured slower than native.
 tuner::Space make_backend_space();
 
 // Reads the BVH parameters of a configuration of either space (and of make_render_space()).
@@ -52,9 +53,10 @@ BvhConfig embree_bvh8_config(BvhQuality quality = BvhQuality::kMedium);
 // The search seeds of tuning (tuner::TunerOptions::search_seeds) for a space of this file or of
 // make_render_space(): the tuned BVH with Embree's BVH8 settings at medium quality, and, when
 // only render time counts, the same at high quality and the same leaves from a binary build with
-// its subtrees reinserted (spatial splits and reinsertion cost build time every frame under the
-// `total` objective, where the search can still find them). Seeding puts a tree as good as
-// native's into every first simplex; the default configuration stays the start point.
+// its subtrees reinserted and collapsed by the SAH-optimal plan (spatial splits and reinsertion
+// cost build time every frame under the `total` objective, where the search can still find them).
+// Seeding puts a tree as good as native's into every first simplex; the default configuration stays
+// the start point.
 std::vector<tuner::Config> tuning_seeds(const tuner::Space& space, bool build_time_counts);
 
 }  // namespace tuneray

@@ -27,6 +27,7 @@ inline const char* const kBatchKernelConfigs[] = {
     "branching=2,collapse=1",
     "branching=4,max_leaf=4,collapse=1",
     "branching=2,sah_block_size=4,min_leaf=4,max_leaf=28,reinsert=1",
+    "branching=2,sah_block_size=4,min_leaf=4,max_leaf=28,reinsert=1,optimal_collapse=1",
 };
 
 // Every ray of the batch must get the hit the single-ray call gives, bit for bit (triangle, t,

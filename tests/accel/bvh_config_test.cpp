@@ -13,7 +13,8 @@ TEST(BvhConfig, DefaultsAreEmbreeRecommended) {
   BvhConfig c;
   EXPECT_EQ(c.to_string(),
             "quality=medium,branching=2,max_depth=32,sah_block_size=1,min_leaf=1,max_leaf=32,"
-            "trav_cost=1,int_cost=1,static=0,compact=0,robust=0,collapse=1,reinsert=0");
+            "trav_cost=1,int_cost=1,static=0,compact=0,robust=0,collapse=1,optimal_collapse=0,"
+            "reinsert=0");
   EXPECT_EQ(parse_bvh_config(""), c);
 }
 

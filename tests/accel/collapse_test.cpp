@@ -1,7 +1,8 @@
 // collapse=1: the 8-wide tree made from a 2- or 4-wide build holds the same leaves (or, with
 // leaves priced in packs, fewer holding the same references), its nodes are as full as the
 // greedy rule allows, its boxes still contain what lies below them, and rays find exactly what
-// the uncollapsed tree finds.
+// the uncollapsed tree finds; all of it greedily and by the SAH-optimal plan, whose tree costs
+// what the plan says and never more than the greedy one.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "accel/bvh_build.h"
 #include "accel/bvh_collapse.h"
+#include "accel/bvh_collapse_plan.h"
 #include "accel/bvh_node_box.h"
 #include "accel/bvh_walk.h"
 #include "accel/tuned_bvh.h"
@@ -106,69 +108,74 @@ class Collapse : public ::testing::Test {
 };
 Mesh* Collapse::mesh_ = nullptr;
 
-TEST_F(Collapse, KeepsEveryLeafAndFillsTheNodesGreedily) {
+TEST_F(Collapse, KeepsEveryLeafAndFillsTheNodes) {
   // Without spatial splits, so that every leaf's triangles lie inside the boxes above it.
-  for (const char* text : {"branching=2", "branching=4", "branching=2,compact=1",
-                           "branching=4,compact=1,max_leaf=4"}) {
-    SCOPED_TRACE(text);
-    Built source, collapsed;
-    build(*mesh_, text, source);
-    build(*mesh_, text, collapsed);
-    const bvh::TreeStats before = bvh::measure_tree(source.tree, 1.0, 1.0);
-    EXPECT_EQ(collapsed.result.inner_nodes, before.node_count);
-    bvh::collapse_to_wide(collapsed.tree, collapsed.result.inner_nodes);
-    ASSERT_EQ(collapsed.tree.shape().width, 8);
-    ASSERT_TRUE(collapsed.tree.collapsed());
-    ASSERT_FALSE(collapsed.tree.relaid_out());
-    const bvh::TreeStats after = bvh::measure_tree(collapsed.tree, 1.0, 1.0);
-    EXPECT_EQ(after.leaf_count, before.leaf_count);
-    EXPECT_EQ(after.references, before.references);
-    EXPECT_EQ(after.leaf_code_mismatches, 0u);
-    // A wide node takes the place of several binary ones; of 4-wide nodes, two at most.
-    if (source.tree.shape().width == 2)
-      EXPECT_LT(after.node_count * 3, before.node_count);
-    else
-      EXPECT_LT(after.node_count, before.node_count);
-    EXPECT_LT(after.depth, before.depth);
+  for (bool optimal : {false, true})
+    for (const char* text : {"branching=2", "branching=4", "branching=2,compact=1",
+                             "branching=4,compact=1,max_leaf=4"}) {
+      SCOPED_TRACE(std::string(text) + (optimal ? ", optimal" : ", greedy"));
+      Built source, collapsed;
+      build(*mesh_, text, source);
+      build(*mesh_, text, collapsed);
+      const bvh::TreeStats before = bvh::measure_tree(source.tree, 1.0, 1.0);
+      EXPECT_EQ(collapsed.result.inner_nodes, before.node_count);
+      bvh::collapse_to_wide(collapsed.tree, collapsed.result.inner_nodes, 0, 1.0f, optimal);
+      ASSERT_EQ(collapsed.tree.shape().width, 8);
+      ASSERT_TRUE(collapsed.tree.collapsed());
+      ASSERT_FALSE(collapsed.tree.relaid_out());
+      const bvh::TreeStats after = bvh::measure_tree(collapsed.tree, 1.0, 1.0);
+      EXPECT_EQ(after.leaf_count, before.leaf_count);
+      EXPECT_EQ(after.references, before.references);
+      EXPECT_EQ(after.leaf_code_mismatches, 0u);
+      // A wide node takes the place of several binary ones; of 4-wide nodes, two at most.
+      if (source.tree.shape().width == 2)
+        EXPECT_LT(after.node_count * 3, before.node_count);
+      else
+        EXPECT_LT(after.node_count, before.node_count);
+      EXPECT_LT(after.depth, before.depth);
 
-    const WideCounts wide = check_wide_tree(*mesh_, collapsed.tree);
-    EXPECT_EQ(wide.nodes, after.node_count);
-    EXPECT_EQ(wide.leaves, before.leaf_count);
-    EXPECT_EQ(wide.not_maximal, 0u);
-    EXPECT_EQ(wide.not_containing, 0u);
-  }
+      const WideCounts wide = check_wide_tree(*mesh_, collapsed.tree);
+      EXPECT_EQ(wide.nodes, after.node_count);
+      EXPECT_EQ(wide.leaves, before.leaf_count);
+      // (The plan leaves a slot free where opening a child would cost more than its visit.)
+      if (!optimal) {
+        EXPECT_EQ(wide.not_maximal, 0u);
+      }
+      EXPECT_EQ(wide.not_containing, 0u);
+    }
 }
 
 // With leaves priced in packs of 4 (what TunedBvhAccel asks for), small subtrees become leaves
 // and sibling leaves merge: far fewer leaves and nodes, none above the limit, every reference
 // kept, boxes still containing their triangles.
 TEST_F(Collapse, MergedLeavesKeepEveryReferenceAndStayWithinTheLimit) {
-  for (const char* text : {"branching=2", "branching=4", "branching=2,max_leaf=6",
-                           "branching=2,robust=1", "branching=2,compact=1"}) {
-    SCOPED_TRACE(text);
-    const bool compact = std::string(text).find("compact") != std::string::npos;
-    const int limit = parse_bvh_config(text).max_leaf;
-    Built source, merged;
-    build(*mesh_, text, source);
-    build(*mesh_, text, merged);
-    const bvh::TreeStats before = bvh::measure_tree(source.tree, 1.0, 1.0);
-    bvh::collapse_to_wide(merged.tree, merged.result.inner_nodes, limit);
-    const bvh::TreeStats after = bvh::measure_tree(merged.tree, 1.0, 1.0);
-    EXPECT_EQ(after.references, before.references);
-    EXPECT_LE(after.max_leaf_size, static_cast<size_t>(limit));
-    EXPECT_EQ(after.leaf_code_mismatches, 0u);
-    if (compact) {
-      EXPECT_EQ(after.leaf_count, before.leaf_count);  // compact leaves are never merged
-    } else {
-      EXPECT_LT(after.leaf_count * 3, before.leaf_count * 2);
-      EXPECT_LT(after.node_count * 4, before.node_count);
+  for (bool optimal : {false, true})
+    for (const char* text : {"branching=2", "branching=4", "branching=2,max_leaf=6",
+                             "branching=2,robust=1", "branching=2,compact=1"}) {
+      SCOPED_TRACE(std::string(text) + (optimal ? ", optimal" : ", greedy"));
+      const bool compact = std::string(text).find("compact") != std::string::npos;
+      const int limit = parse_bvh_config(text).max_leaf;
+      Built source, merged;
+      build(*mesh_, text, source);
+      build(*mesh_, text, merged);
+      const bvh::TreeStats before = bvh::measure_tree(source.tree, 1.0, 1.0);
+      bvh::collapse_to_wide(merged.tree, merged.result.inner_nodes, limit, 1.0f, optimal);
+      const bvh::TreeStats after = bvh::measure_tree(merged.tree, 1.0, 1.0);
+      EXPECT_EQ(after.references, before.references);
+      EXPECT_LE(after.max_leaf_size, static_cast<size_t>(limit));
+      EXPECT_EQ(after.leaf_code_mismatches, 0u);
+      if (compact) {
+        EXPECT_EQ(after.leaf_count, before.leaf_count);  // compact leaves are never merged
+      } else {
+        EXPECT_LT(after.leaf_count * 3, before.leaf_count * 2);
+        EXPECT_LT(after.node_count * 4, before.node_count);
+      }
+      // (Not the greedy rule's fullness: a wide child may hold fewer children than the source node
+      // the rule saw, once its own leaves merged.)
+      const WideCounts wide = check_wide_tree(*mesh_, merged.tree);
+      EXPECT_EQ(wide.leaves, after.leaf_count);
+      EXPECT_EQ(wide.not_containing, 0u);
     }
-    // (Not the greedy rule's fullness: a wide child may hold fewer children than the source node
-    // the rule saw, once its own leaves merged.)
-    const WideCounts wide = check_wide_tree(*mesh_, merged.tree);
-    EXPECT_EQ(wide.leaves, after.leaf_count);
-    EXPECT_EQ(wide.not_containing, 0u);
-  }
 }
 
 // The pack's price steers the leaves: the dearer a pack test against a node visit, the fewer
@@ -192,6 +199,42 @@ TEST_F(Collapse, DearerPacksMakeSmallerLeaves) {
   EXPECT_LT(previous, 3.0);  // at 16 the build's own small leaves stay almost as they were
 }
 
+// Without merged leaves the plan's optimum is the written tree's cost, to rounding: an
+// independent walk of the 8-wide tree (node visits and pack tests weighted by area) agrees with
+// the dynamic programme's value, and the greedy rule's tree is never cheaper.
+template <int N>
+double planned_cost(const bvh::Tree& tree) {
+  const auto& root = *bvh::ref_ptr<bvh::NodeOf<N, false>>(tree.root());
+  BBox box;
+  for (int i = 0; i < N; ++i)
+    if (root.child[i] != bvh::kEmptyRef) box.extend(bvh::child_box<N, false>(root, i));
+  const bvh::CollapsePlan<N, false> plan(tree.root(), 0, 1.0f);
+  return 1.0 + plan.cost(plan.root(), 8) / box.surface_area();
+}
+
+TEST_F(Collapse, TheOptimalPlanCostsWhatItSaysAndNeverMoreThanTheGreedyRule) {
+  bool cheaper_somewhere = false;
+  for (const char* text : {"branching=2", "branching=4", "branching=2,sah_block_size=4",
+                           "branching=2,max_leaf=4,quality=high"}) {
+    SCOPED_TRACE(text);
+    Built greedy, optimal;
+    build(*mesh_, text, greedy);
+    build(*mesh_, text, optimal);
+    const double planned = optimal.tree.shape().width == 2 ? planned_cost<2>(optimal.tree)
+                                                           : planned_cost<4>(optimal.tree);
+    bvh::collapse_to_wide(greedy.tree, greedy.result.inner_nodes, 0, 1.0f, false);
+    bvh::collapse_to_wide(optimal.tree, optimal.result.inner_nodes, 0, 1.0f, true);
+    const bvh::TreeStats g = bvh::measure_tree(greedy.tree, 1.0, 1.0);
+    const bvh::TreeStats o = bvh::measure_tree(optimal.tree, 1.0, 1.0);
+    EXPECT_NEAR(o.pack_sah_cost, planned, 1e-5 * planned);
+    EXPECT_LE(o.pack_sah_cost, g.pack_sah_cost * (1.0 + 1e-6));
+    if (o.pack_sah_cost < 0.99 * g.pack_sah_cost) cheaper_somewhere = true;
+    EXPECT_EQ(o.references, g.references);
+    EXPECT_EQ(o.leaf_count, g.leaf_count);
+  }
+  EXPECT_TRUE(cheaper_somewhere);
+}
+
 TEST_F(Collapse, RaysFindExactlyWhatTheUncollapsedTreeFinds) {
   std::vector<Ray> rays;
   Pcg32 rng(7);
@@ -200,7 +243,10 @@ TEST_F(Collapse, RaysFindExactlyWhatTheUncollapsedTreeFinds) {
         Ray{random_point(rng, mesh_->bounds()), 0, random_direction(rng), 0.2f * rng.next_float()});
   for (const char* text :
        {"branching=2", "branching=4,max_leaf=4", "branching=2,compact=1", "branching=2,robust=1",
-        "branching=2,quality=high", "branching=2,static=1", "branching=4,compact=1,static=1"}) {
+        "branching=2,quality=high", "branching=2,static=1", "branching=4,compact=1,static=1",
+        "branching=2,optimal_collapse=1", "branching=4,max_leaf=4,optimal_collapse=1",
+        "branching=2,compact=1,robust=1,optimal_collapse=1",
+        "branching=2,quality=high,static=1,optimal_collapse=1"}) {
     SCOPED_TRACE(text);
     TunedBvhAccel plain(parse_bvh_config(std::string(text) + ",collapse=0"));
     TunedBvhAccel wide(parse_bvh_config(std::string(text) + ",collapse=1"));

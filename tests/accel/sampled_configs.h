@@ -1,6 +1,6 @@
 // A sample of configurations covering every quality, every branching factor, compact on/off,
-// robust on/off, static on/off, collapse on/off, reinsert on/off, extreme leaf sizes and cost
-// ratios.
+// robust on/off, static on/off, collapse on/off (greedy or by the SAH-optimal plan), reinsert
+// on/off, extreme leaf sizes and cost ratios.
 #pragma once
 
 #include <string>
@@ -32,6 +32,9 @@ inline std::vector<std::string> sampled_configs() {
       "branching=2,sah_block_size=4,min_leaf=4,max_leaf=28,reinsert=1",
       "quality=high,branching=2,reinsert=1,static=1",
       "branching=2,compact=1,robust=1,collapse=0,reinsert=1",
+      "branching=2,sah_block_size=4,min_leaf=4,max_leaf=28,reinsert=1,optimal_collapse=1",
+      "branching=4,optimal_collapse=1",
+      "quality=high,branching=2,compact=1,optimal_collapse=1",
   };
 }
 

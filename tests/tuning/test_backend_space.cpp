@@ -16,21 +16,23 @@
 namespace tuneray {
 namespace {
 
-const char* const kBvhParams[] = {"quality",  "branching", "max_depth",  "sah_block_size",
-                                  "min_leaf", "max_leaf",  "cost_ratio", "static",
-                                  "compact",  "robust",    "collapse",   "reinsert"};
+const char* const kBvhParams[] = {"quality",         "branching", "max_depth",  "sah_block_size",
+                                  "min_leaf",        "max_leaf",  "cost_ratio", "static",
+                                  "compact",         "robust",    "collapse",   "reinsert",
+                                  "optimal_collapse"};
 
 TEST(BackendSpace, BackendAndNativeQualityComeFirst) {
   tuner::Space space = make_backend_space();
   tuner::Space bvh = make_bvh_space();
-  ASSERT_EQ(space.size(), bvh.size() + 4);
+  ASSERT_EQ(space.size(), bvh.size() + 5);
   EXPECT_EQ(space.param(0).name, "backend");
   EXPECT_EQ(space.param(0).labels, (std::vector<std::string>{"tuned", "native"}));
   EXPECT_EQ(space.param(1).name, "native_quality");
   EXPECT_EQ(space.param(1).labels, (std::vector<std::string>{"low", "medium", "high"}));
   for (size_t i = 0; i < bvh.size(); ++i) EXPECT_EQ(space.param(i + 2).name, bvh.param(i).name);
-  EXPECT_EQ(space.param(space.size() - 2).name, "collapse");
-  EXPECT_EQ(space.param(space.size() - 1).name, "reinsert");
+  EXPECT_EQ(space.param(space.size() - 3).name, "collapse");
+  EXPECT_EQ(space.param(space.size() - 2).name, "reinsert");
+  EXPECT_EQ(space.param(space.size() - 1).name, "optimal_collapse");
   // The default stays the study's: Embree's recommended build of our tree.
   EXPECT_EQ(to_accel_choice(space.default_config()), AccelChoice::tuned(BvhConfig{}));
   EXPECT_EQ(space.default_config().get_enum("native_quality"), "medium");
@@ -107,6 +109,23 @@ TEST(BackendSpace, ReinsertCountsOnlyForBinaryTrees) {
   EXPECT_THROW(to_tuner_config(make_bvh_space(), binary), std::invalid_argument);
 }
 
+TEST(BackendSpace, OptimalCollapseCountsOnlyWhereTheTreeIsCollapsed) {
+  tuner::Space space = make_backend_space();
+  EXPECT_FALSE(space.default_config().get_bool("optimal_collapse"));
+  EXPECT_NE(space.parse("optimal_collapse=true"), space.default_config());
+  EXPECT_NE(space.parse("branching=4,optimal_collapse=true"), space.parse("branching=4"));
+  EXPECT_EQ(space.parse("branching=8,optimal_collapse=true"), space.parse("branching=8"));
+  EXPECT_EQ(space.parse("collapse=false,optimal_collapse=true"), space.parse("collapse=false"));
+  EXPECT_EQ(space.parse("backend=native,optimal_collapse=true"), space.parse("backend=native"));
+  BvhConfig planned;
+  planned.optimal_collapse = true;
+  EXPECT_EQ(to_bvh_config(to_tuner_config(space, planned)), planned);
+  EXPECT_TRUE(to_bvh_config(space.parse("optimal_collapse=true")).collapses_optimally());
+  // The BVH-only space has no such parameter: it means 0 and refuses a collapse that needs it.
+  EXPECT_FALSE(to_bvh_config(make_bvh_space().default_config()).optimal_collapse);
+  EXPECT_THROW(to_tuner_config(make_bvh_space(), planned), std::invalid_argument);
+}
+
 TEST(BackendSpace, SeedsAreEmbreesBvh8LeavesAndReinsertionOnlyWhereItsBuildIsFree) {
   const tuner::Space space = make_backend_space();
   const std::vector<tuner::Config> render = tuning_seeds(space, false);
@@ -115,7 +134,7 @@ TEST(BackendSpace, SeedsAreEmbreesBvh8LeavesAndReinsertionOnlyWhereItsBuildIsFre
   EXPECT_EQ(to_bvh_config(render[1]), embree_bvh8_config(BvhQuality::kHigh));
   const BvhConfig reinserted = to_bvh_config(render[2]);
   EXPECT_TRUE(reinserted.reinserts());
-  EXPECT_TRUE(reinserted.collapses());
+  EXPECT_TRUE(reinserted.collapses_optimally());
   EXPECT_EQ(reinserted.min_leaf, 4);
   EXPECT_EQ(reinserted.max_leaf, 28);
   EXPECT_EQ(reinserted.sah_block_size, 4);
