@@ -51,8 +51,8 @@ class Collapser {
       c.leaf_capacity_ = leaf_capacity;
     }
     if (optimal)
-      c.plan_ = std::make_unique<CollapsePlan<N, kCompact>>(tree.root(), c.flatten_limit_,
-                                                            merge_limit > 1 ? pack_cost : 1.0f);
+      c.plan_ = std::make_unique<CollapsePlan<N, kCompact>>(
+          tree.root(), max_inner_nodes, c.flatten_limit_, merge_limit > 1 ? pack_cost : 1.0f);
     const NodeRef root = c.plan_ ? c.collapse_planned(c.plan_->root()) : c.collapse(tree.root());
     TreeShape shape = tree.shape();
     shape.width = kWide;

@@ -29,8 +29,10 @@ class CollapsePlan {
   static constexpr int kWide = BvhConfig::kCollapsedWidth;
   using Source = NodeOf<N, kCompact>;
 
-  CollapsePlan(NodeRef root, int flatten_limit, float pack_cost)
+  // `inner_nodes` (at least the source tree's inner node count) sizes the table once.
+  CollapsePlan(NodeRef root, size_t inner_nodes, int flatten_limit, float pack_cost)
       : flatten_limit_(flatten_limit), pack_cost_(pack_cost) {
+    nodes_.reserve(inner_nodes * N + 1);
     int triangles = 0;
     plan(root, 0.0f, triangles);
   }

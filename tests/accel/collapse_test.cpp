@@ -208,7 +208,7 @@ double planned_cost(const bvh::Tree& tree) {
   BBox box;
   for (int i = 0; i < N; ++i)
     if (root.child[i] != bvh::kEmptyRef) box.extend(bvh::child_box<N, false>(root, i));
-  const bvh::CollapsePlan<N, false> plan(tree.root(), 0, 1.0f);
+  const bvh::CollapsePlan<N, false> plan(tree.root(), 0, 0, 1.0f);
   return 1.0 + plan.cost(plan.root(), 8) / box.surface_area();
 }
 
