@@ -33,8 +33,8 @@ namespace tuneray::bvh {
 // 82,428 leaves of 1.75 triangles become 7,914 and 28,409 of 5.07.)
 //
 // With `optimal`, which children each wide node takes is not decided by the greedy rule but by
-// the SAH-optimal plan of bvh_collapse_plan.h under the same prices (leaves merge as above
-// afterwards, and the greedy rule fills the slots merged leaves free).
+// the SAH-optimal plan of bvh_collapse_plan.h under the same prices (sibling leaves merge as
+// above afterwards; the slots they free stay free, where the plan wanted no further child).
 void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to = 0,
                       float pack_cost = 1.0f, bool optimal = false);
 
