@@ -88,10 +88,7 @@ class Collapser {
     return s;
   }
 
-  // What testing `triangles` in packs of 4 costs, a node visit costing 1.
-  float packs_cost(int triangles) const {
-    return pack_cost_ * static_cast<float>((triangles + 3) / 4);
-  }
+  float packs_cost(int triangles) const { return packs_price(pack_cost_, triangles); }
 
   // Triangles below `ref`, or flatten_limit_ + 1 as soon as there are more.
   int triangles_below(NodeRef ref) const {

@@ -23,6 +23,12 @@
 
 namespace tuneray::bvh {
 
+// What testing `triangles` in packs of 4 costs at `pack_cost` a pack (a node visit costing 1):
+// the leaf price of both collapses.
+inline float packs_price(float pack_cost, int triangles) {
+  return pack_cost * static_cast<float>((triangles + 3) / 4);
+}
+
 template <int N, bool kCompact>
 class CollapsePlan {
  public:
@@ -69,9 +75,7 @@ class CollapsePlan {
 
   static constexpr float kNever = std::numeric_limits<float>::infinity();
 
-  float packs_cost(int triangles) const {
-    return pack_cost_ * static_cast<float>((triangles + 3) / 4);
-  }
+  float packs_cost(int triangles) const { return packs_price(pack_cost_, triangles); }
 
   // Fills nodes_ for the subtree at `ref` (box area `area`), children first; returns its index
   // and the number of triangles below it (capped at flatten_limit_ + 1).

@@ -1,8 +1,8 @@
 // collapse=1: the 8-wide tree made from a 2- or 4-wide build holds the same leaves (or, with
 // leaves priced in packs, fewer holding the same references), its nodes are as full as the
-// greedy rule allows (where that rule collapses it), its boxes still contain what lies below them, and rays find exactly what
-// the uncollapsed tree finds; all of it greedily and by the SAH-optimal plan, whose tree costs
-// what the plan says and never more than the greedy one.
+// greedy rule allows (where that rule collapses it), its boxes still contain what lies below
+// them, and rays find exactly what the uncollapsed tree finds; all of it greedily and by the
+// SAH-optimal plan, whose tree costs what the plan says and never more than the greedy one.
 #include <gtest/gtest.h>
 
 #include <string>
