@@ -40,6 +40,8 @@ struct Packet {
   int nonnegative[3];
 };
 
+void set_packet_terms(int octant, Packet& pk);
+
 // The rays must share the octant `octant` (the packet box test picks one near plane per axis).
 // Each lane's terms are those make_traversal_ray gives the ray alone (the same clamp of tiny
 // direction components, the same correctly rounded division and product), computed 8 at a time.
@@ -57,6 +59,11 @@ void make_packet(const Ray* rays, const uint32_t* index, int count, int octant, 
     pk.tfar[i] = i < count ? ray.tfar : -kInf;
     pk.hit[i] = Hit{};
   }
+  set_packet_terms(octant, pk);
+}
+
+// The packet's SIMD terms from its rows org_of, dir_of and tnear_of.
+void set_packet_terms(int octant, Packet& pk) {
   const __m256 sign_bit = _mm256_set1_ps(-0.0f), tiny = _mm256_set1_ps(1e-18f);
   for (int a = 0; a < 3; ++a) {
     const __m256 d = _mm256_load_ps(pk.dir_of[a]);
@@ -76,6 +83,45 @@ void make_packet(const Ray* rays, const uint32_t* index, int count, int octant, 
   near_rows_of_octant(octant, pk.near_row);
   for (int a = 0; a < 3; ++a)
     pk.far_row[a] = pk.near_row[a] < 3 ? pk.near_row[a] + 3 : pk.near_row[a] - 3;
+}
+
+// make_packet for `count` consecutive rays (a run of one octant): the 8 rays of a full packet
+// are read as 8 rows of 8 floats (org, tnear, dir, tfar) and transposed, instead of gathered one
+// float at a time. The lanes' terms are computed as above.
+void make_packet_run(const Ray* rays, int count, int octant, Packet& pk) {
+  static_assert(sizeof(Ray) == 8 * sizeof(float), "a ray is one row of 8 floats");
+  if (count < kPacketSize) {
+    uint32_t index[kPacketSize];
+    for (int i = 0; i < kPacketSize; ++i) index[i] = static_cast<uint32_t>(i < count ? i : 0);
+    make_packet(rays, index, count, octant, pk);
+    return;
+  }
+  const float* f = &rays[0].org.x;
+  __m256 r[8];
+  for (int i = 0; i < 8; ++i) r[i] = _mm256_loadu_ps(f + 8 * i);
+  // 8×8 transpose: row j of the result is field j of the eight rays.
+  const __m256 a0 = _mm256_unpacklo_ps(r[0], r[1]), a1 = _mm256_unpackhi_ps(r[0], r[1]);
+  const __m256 a2 = _mm256_unpacklo_ps(r[2], r[3]), a3 = _mm256_unpackhi_ps(r[2], r[3]);
+  const __m256 a4 = _mm256_unpacklo_ps(r[4], r[5]), a5 = _mm256_unpackhi_ps(r[4], r[5]);
+  const __m256 a6 = _mm256_unpacklo_ps(r[6], r[7]), a7 = _mm256_unpackhi_ps(r[6], r[7]);
+  const __m256 b0 = _mm256_shuffle_ps(a0, a2, 0x44), b1 = _mm256_shuffle_ps(a0, a2, 0xee);
+  const __m256 b2 = _mm256_shuffle_ps(a1, a3, 0x44), b3 = _mm256_shuffle_ps(a1, a3, 0xee);
+  const __m256 b4 = _mm256_shuffle_ps(a4, a6, 0x44), b5 = _mm256_shuffle_ps(a4, a6, 0xee);
+  const __m256 b6 = _mm256_shuffle_ps(a5, a7, 0x44), b7 = _mm256_shuffle_ps(a5, a7, 0xee);
+  const __m256 field[8] = {
+      _mm256_permute2f128_ps(b0, b4, 0x20), _mm256_permute2f128_ps(b1, b5, 0x20),
+      _mm256_permute2f128_ps(b2, b6, 0x20), _mm256_permute2f128_ps(b3, b7, 0x20),
+      _mm256_permute2f128_ps(b0, b4, 0x31), _mm256_permute2f128_ps(b1, b5, 0x31),
+      _mm256_permute2f128_ps(b2, b6, 0x31), _mm256_permute2f128_ps(b3, b7, 0x31)};
+  for (int a = 0; a < 3; ++a) {
+    _mm256_store_ps(pk.org_of[a], field[a]);
+    _mm256_store_ps(pk.dir_of[a], field[4 + a]);
+  }
+  _mm256_store_ps(pk.tnear_of, field[3]);
+  _mm256_store_ps(pk.tfar_of, field[7]);
+  _mm256_store_ps(pk.tfar, field[7]);
+  for (int i = 0; i < kPacketSize; ++i) pk.hit[i] = Hit{};
+  set_packet_terms(octant, pk);
 }
 
 // Lane i as the single ray make_traversal_ray makes of it (without the watertight shear, which
@@ -409,22 +455,27 @@ void traverse_stream(const TraversalContext& ctx, Stream& s, uint64_t live) {
 template <int N>
 void intersect_batch_streams(const TraversalContext& ctx, const Kernels& single, const Ray* rays,
                              size_t count, Hit* hits) {
-  for (size_t i = 0; i < count; ++i) hits[i] = Hit{};
-  if (ctx.root == kEmptyRef) return;
+  if (ctx.root == kEmptyRef) {
+    for (size_t i = 0; i < count; ++i) hits[i] = Hit{};
+    return;
+  }
   Stream s;  // once per batch: its 64 rays and hits are not cheap to construct
-  // Octant runs of 3 rays or fewer go ray by ray, as thinned-out streams do.
-  for_each_octant_group(
+  // Runs of 3 rays or fewer go ray by ray, as thinned-out streams do.
+  for_each_octant_run(
       rays, count, kStreamSize, kSwitchThreshold + 1,
-      [&](const uint32_t* index, int n, int octant) {
+      [&](size_t first, int n, int octant) {
         s.packets = (n + kPacketSize - 1) / kPacketSize;
         for (int p = 0; p < s.packets; ++p)
-          make_packet(rays, index + p * kPacketSize, std::min(kPacketSize, n - p * kPacketSize),
-                      octant, s.pk[p]);
+          make_packet_run(rays + first + p * kPacketSize,
+                          std::min(kPacketSize, n - p * kPacketSize), octant, s.pk[p]);
         make_frustum(s, s.frustum);
         traverse_stream<N>(ctx, s, n == kStreamSize ? ~uint64_t{0} : (uint64_t{1} << n) - 1);
-        for (int i = 0; i < n; ++i) hits[index[i]] = s.pk[i / kPacketSize].hit[i % kPacketSize];
+        for (int i = 0; i < n; ++i) hits[first + i] = s.pk[i / kPacketSize].hit[i % kPacketSize];
       },
-      [&](uint32_t i) { single.intersect(ctx, rays[i], hits[i]); });
+      [&](size_t i) {
+        hits[i] = Hit{};
+        single.intersect(ctx, rays[i], hits[i]);
+      });
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <type_traits>
 #include <utility>
@@ -410,6 +411,13 @@ inline int direction_octant(const Vec3f& d) {
   return (std::signbit(d.x) ? 1 : 0) | (std::signbit(d.y) ? 2 : 0) | (std::signbit(d.z) ? 4 : 0);
 }
 
+// direction_octant of a ray, from one load of its direction's sign bits (dir and tfar are the
+// ray's second 16 bytes).
+inline int ray_octant(const Ray& ray) {
+  static_assert(offsetof(Ray, dir) + 4 * sizeof(float) <= sizeof(Ray), "dir and one float");
+  return _mm_movemask_ps(_mm_loadu_ps(&ray.dir.x)) & 7;
+}
+
 // A group's near planes come from its octant, never from one of its rays: a ray with a NaN
 // direction (which enters no box) must not hand its rows to the others.
 inline void near_rows_of_octant(int octant, int (&near_row)[3]) {
@@ -432,7 +440,7 @@ void for_each_octant_group(const Ray* rays, size_t count, int size, int min_size
   octant_of.resize(count);
   size_t begin[9] = {};
   for (size_t i = 0; i < count; ++i) {
-    octant_of[i] = static_cast<uint8_t>(direction_octant(rays[i].dir));
+    octant_of[i] = static_cast<uint8_t>(ray_octant(rays[i]));
     ++begin[octant_of[i] + 1];
   }
   for (int o = 0; o < 8; ++o) begin[o + 1] += begin[o];
@@ -449,6 +457,29 @@ void for_each_octant_group(const Ray* rays, size_t count, int size, int min_size
         group(&order[first], n, o);
       }
     }
+  }
+}
+
+// For batches already in coherent order (camera rays of neighbouring pixels): calls
+// `group(first, n, octant)` for each run of up to `size` consecutive rays of one octant, or
+// `single(i)` for each ray of a run shorter than `min_size`. Unlike for_each_octant_group it
+// neither sorts nor gathers: a camera's rays change octant only where the view crosses an axis.
+template <class GroupFn, class SingleFn>
+void for_each_octant_run(const Ray* rays, size_t count, int size, int min_size, GroupFn group,
+                         SingleFn single) {
+  size_t first = 0;
+  while (first < count) {
+    const int octant = ray_octant(rays[first]);
+    size_t end = first + 1;
+    const size_t limit = std::min(count, first + static_cast<size_t>(size));
+    while (end < limit && ray_octant(rays[end]) == octant) ++end;
+    const int n = static_cast<int>(end - first);
+    if (n < min_size) {
+      for (size_t i = first; i < end; ++i) single(i);
+    } else {
+      group(first, n, octant);
+    }
+    first = end;
   }
 }
 

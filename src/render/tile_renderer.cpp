@@ -10,6 +10,8 @@
 #include <cstring>
 #include <memory>
 
+#include "render/wave_pixel_order.h"
+
 namespace tuneray {
 
 namespace {
@@ -82,7 +84,8 @@ TileRenderer::TileRenderer(const Scene& scene, const Accel& accel, const CameraD
       camera_(camera, settings.width, settings.height),
       integrator_(scene, accel, settings),
       prototype_(prototype),
-      wave_pool_(std::make_unique<WavePool>()) {}
+      wave_pool_(std::make_unique<WavePool>()),
+      wave_order_(wave_pixel_order(settings.width, settings.height)) {}
 
 TileRenderer::~TileRenderer() = default;
 
@@ -263,7 +266,10 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
 void TileRenderer::add_to_film(const WaveBuffers& b, Film& film) const {
   // Each pixel's samples are consecutive slots, in index order, as a lone path loop adds them.
   PixelSamples samples;
+  // Film lines are asked for this many samples ahead (a few pixels at any spp).
+  constexpr size_t kAhead = 32;
   for (size_t k = 0; k < b.ids.size(); ++k) {
+    if (k + kAhead < b.ids.size()) film.prefetch(b.ids[k + kAhead].x, b.ids[k + kAhead].y);
     const PixelSampleId& id = b.ids[k];
     samples.add(b.result[k], id.index);
     const bool last = k + 1 == b.ids.size() || b.ids[k + 1].x != id.x || b.ids[k + 1].y != id.y;
@@ -325,16 +331,17 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
   const bool profile = settings_.quality.profile_phases;
 
   // Chunks of whole pixels (so each pixel has one writer and sums its samples in order) with
-  // at most `batch` paths, unless one pixel alone has more.
+  // at most `batch` paths, unless one pixel alone has more; positions in wave_order_.
   std::vector<size_t> chunk_begin{0};
   std::vector<uint32_t> first(pixel_count), count(pixel_count);
   uint64_t total_samples = 0;
-  for (size_t i = 0, in_chunk = 0; i < pixel_count; ++i) {
+  for (size_t k = 0, in_chunk = 0; k < pixel_count; ++k) {
+    const uint32_t i = wave_order_[k];
     first[i] = work.first(i);
     count[i] = work.count(i);
     total_samples += count[i];
     if (in_chunk > 0 && in_chunk + count[i] > batch) {
-      chunk_begin.push_back(i);
+      chunk_begin.push_back(k);
       in_chunk = 0;
     }
     in_chunk += count[i];
@@ -351,7 +358,8 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                       for (size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
                         uint64_t t_chunk = profile ? now_ns() : 0;
                         b.ids.clear();
-                        for (size_t p = chunk_begin[chunk]; p < chunk_begin[chunk + 1]; ++p) {
+                        for (size_t k = chunk_begin[chunk]; k < chunk_begin[chunk + 1]; ++k) {
+                          const uint32_t p = wave_order_[k];
                           const uint32_t x = static_cast<uint32_t>(p % width);
                           const uint32_t y = static_cast<uint32_t>(p / width);
                           for (uint32_t s = 0; s < count[p]; ++s)

@@ -3,8 +3,9 @@
 // at a time and pack the live paths to the front after every bounce:
 // - tiles: square tiles that TBB spreads over all cores, a tile's samples one wave, its rays
 //   traced one at a time through the accelerator's single-ray calls;
-// - wavefront (quality.wavefront): runs of whole pixels as waves, rays traced in batches through
-//   the accelerator's batch entry points, shadow rays collected and traced together.
+// - wavefront (quality.wavefront): runs of whole pixels as waves, taken in 8×8 blocks
+//   (wave_pixel_order.h), rays traced in batches through the accelerator's batch entry points,
+//   shadow rays collected and traced together.
 // Both consume each pixel's samples in the same order, so they give the same image.
 #pragma once
 
@@ -101,6 +102,7 @@ class TileRenderer {
   const Sampler& prototype_;
   struct WavePool;
   std::unique_ptr<WavePool> wave_pool_;  // per-thread wavefront buffers, kept between passes
+  std::vector<uint32_t> wave_order_;     // pixels in the order waves take them (wave_pixel_order.h)
 };
 
 }  // namespace tuneray

@@ -56,6 +56,26 @@ TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
   expect_streams_match_single_rays(mesh, rays, kBatchKernelConfigs);
 }
 
+// Coherent batches are cut into runs of consecutive rays of one octant: runs of every length
+// (single rays below 4, partial packets, full streams and runs longer than a stream) and octant
+// changes at every position must leave each ray its single-ray hit.
+TEST(TunedPackets, RunsOfEveryLengthFindTheSingleRayHits) {
+  const Mesh mesh = make_soup(4000, 11, 0.08f);
+  const std::vector<Ray> ahead = camera_rays(Vec3f(0.5f, 0.45f, -1.5f), Vec3f(0, 0, 1), 40, 30);
+  const std::vector<Ray> back =
+      camera_rays(Vec3f(0.5f, 0.45f, 2.5f), Vec3f(0, 0, -1), 40, 30, kInf, 0.3f);
+  // Rays of the two views (opposite z signs, so every switch is an octant change) in runs of
+  // 1, 2, 3, ..., 70 rays in turn.
+  std::vector<Ray> rays;
+  size_t a = 0, b = 0;
+  for (int run = 1; a < ahead.size() || b < back.size(); run = run % 70 + 1) {
+    const std::vector<Ray>& from = run % 2 ? ahead : back;
+    size_t& at = run % 2 ? a : b;
+    for (int k = 0; k < run && at < from.size(); ++k) rays.push_back(from[at++]);
+  }
+  expect_streams_match_single_rays(mesh, rays, kBatchKernelConfigs);
+}
+
 // A stream's frustum culls a node's children for all its rays at once; it must never cull a box
 // one of them enters. Narrow views (rays of a stream nearly parallel, so the frustum is tight)
 // onto a finely tessellated cube, whose triangles lie on the faces of their leaves' boxes: the
