@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "accel/bvh_traverse_impl.h"
+#include "math/transpose8.h"
 
 namespace tuneray::bvh {
 
@@ -97,22 +98,9 @@ void make_packet_run(const Ray* rays, int count, int octant, Packet& pk) {
     return;
   }
   const float* f = &rays[0].org.x;
-  __m256 r[8];
-  for (int i = 0; i < 8; ++i) r[i] = _mm256_loadu_ps(f + 8 * i);
-  // 8×8 transpose: row j of the result is field j of the eight rays.
-  const __m256 a0 = _mm256_unpacklo_ps(r[0], r[1]), a1 = _mm256_unpackhi_ps(r[0], r[1]);
-  const __m256 a2 = _mm256_unpacklo_ps(r[2], r[3]), a3 = _mm256_unpackhi_ps(r[2], r[3]);
-  const __m256 a4 = _mm256_unpacklo_ps(r[4], r[5]), a5 = _mm256_unpackhi_ps(r[4], r[5]);
-  const __m256 a6 = _mm256_unpacklo_ps(r[6], r[7]), a7 = _mm256_unpackhi_ps(r[6], r[7]);
-  const __m256 b0 = _mm256_shuffle_ps(a0, a2, 0x44), b1 = _mm256_shuffle_ps(a0, a2, 0xee);
-  const __m256 b2 = _mm256_shuffle_ps(a1, a3, 0x44), b3 = _mm256_shuffle_ps(a1, a3, 0xee);
-  const __m256 b4 = _mm256_shuffle_ps(a4, a6, 0x44), b5 = _mm256_shuffle_ps(a4, a6, 0xee);
-  const __m256 b6 = _mm256_shuffle_ps(a5, a7, 0x44), b7 = _mm256_shuffle_ps(a5, a7, 0xee);
-  const __m256 field[8] = {
-      _mm256_permute2f128_ps(b0, b4, 0x20), _mm256_permute2f128_ps(b1, b5, 0x20),
-      _mm256_permute2f128_ps(b2, b6, 0x20), _mm256_permute2f128_ps(b3, b7, 0x20),
-      _mm256_permute2f128_ps(b0, b4, 0x31), _mm256_permute2f128_ps(b1, b5, 0x31),
-      _mm256_permute2f128_ps(b2, b6, 0x31), _mm256_permute2f128_ps(b3, b7, 0x31)};
+  __m256 field[8];
+  for (int i = 0; i < 8; ++i) field[i] = _mm256_loadu_ps(f + 8 * i);
+  transpose8(field);  // row i was ray i; row j is now field j of the eight rays
   for (int a = 0; a < 3; ++a) {
     _mm256_store_ps(pk.org_of[a], field[a]);
     _mm256_store_ps(pk.dir_of[a], field[4 + a]);
