@@ -67,15 +67,15 @@ struct Callbacks {
     ctx->references.fetch_add(count, std::memory_order_relaxed);
     const GeometryView& g = *ctx->geometry;
     size_t packs = kCompact ? 0 : (count + 3) / 4;
-    LeafHeader header{static_cast<uint32_t>(count), static_cast<uint32_t>(packs)};
-    size_t bytes = leaf_bytes(&header, kCompact);
-    auto* leaf = static_cast<LeafHeader*>(rtcThreadLocalAlloc(alloc, bytes, kCacheLine));
-    *leaf = header;
+    const LeafHeader header{static_cast<uint32_t>(count), static_cast<uint32_t>(packs)};
+    const size_t bytes = leaf_bytes(header, kCompact);
+    auto* leaf = static_cast<char*>(rtcThreadLocalAlloc(alloc, bytes, kCacheLine));
+    std::memcpy(leaf + leaf_header_offset(static_cast<uint32_t>(packs)), &header, sizeof(header));
     if constexpr (kCompact) {
-      uint32_t* ids = leaf_payload<uint32_t>(leaf);
+      auto* ids = reinterpret_cast<uint32_t*>(leaf + kLeafPayloadOffset);
       for (size_t i = 0; i < count; ++i) ids[i] = prims[i].primID;
     } else {
-      TriPack4* pack = leaf_payload<TriPack4>(leaf);
+      auto* pack = reinterpret_cast<TriPack4*>(leaf);
       std::memset(static_cast<void*>(pack), 0, packs * sizeof(TriPack4));
       for (size_t i = 0; i < packs * 4; ++i) {
         TriPack4& p = pack[i / 4];

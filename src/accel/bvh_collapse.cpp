@@ -78,7 +78,7 @@ class Collapser {
     s.area = s.box.surface_area();
     s.part[0] = s.ref;
     if (is_leaf(s.ref)) {
-      s.triangles = static_cast<int>(ref_ptr<LeafHeader>(s.ref)->prim_count);
+      s.triangles = static_cast<int>(leaf_header(s.ref)->prim_count);
     } else if (plan >= 0 ? plan_->as_leaf(plan) : flatten_limit_ > 0 && flattens(s.ref, s.area)) {
       s.parts = 0;
       collect_leaves(s.ref, s);
@@ -92,7 +92,7 @@ class Collapser {
 
   // Triangles below `ref`, or flatten_limit_ + 1 as soon as there are more.
   int triangles_below(NodeRef ref) const {
-    if (is_leaf(ref)) return static_cast<int>(ref_ptr<LeafHeader>(ref)->prim_count);
+    if (is_leaf(ref)) return static_cast<int>(leaf_header(ref)->prim_count);
     const Source& n = *ref_ptr<Source>(ref);
     int sum = 0;
     for (int i = 0; i < N && sum <= flatten_limit_; ++i)
@@ -106,7 +106,7 @@ class Collapser {
   // of one triangle, which in packs of 4 wastes lanes and nodes).
   float best_cost(NodeRef ref, float area, int& triangles) const {
     if (is_leaf(ref)) {
-      triangles = static_cast<int>(ref_ptr<LeafHeader>(ref)->prim_count);
+      triangles = static_cast<int>(leaf_header(ref)->prim_count);
       return area * packs_cost(triangles);
     }
     const Source& n = *ref_ptr<Source>(ref);
@@ -141,7 +141,7 @@ class Collapser {
   void collect_leaves(NodeRef ref, Slot& s) const {
     if (is_leaf(ref)) {
       s.part[s.parts++] = ref;
-      s.triangles += static_cast<int>(ref_ptr<LeafHeader>(ref)->prim_count);
+      s.triangles += static_cast<int>(leaf_header(ref)->prim_count);
       return;
     }
     const Source& n = *ref_ptr<Source>(ref);
@@ -150,7 +150,7 @@ class Collapser {
   }
 
   static size_t leaf_lines_below(NodeRef ref) {
-    if (is_leaf(ref)) return whole_lines(leaf_bytes(ref_ptr<LeafHeader>(ref), kCompact));
+    if (is_leaf(ref)) return whole_lines(leaf_bytes(*leaf_header(ref), kCompact));
     const Source& n = *ref_ptr<Source>(ref);
     size_t bytes = 0;
     for (int i = 0; i < N; ++i)
@@ -207,21 +207,21 @@ class Collapser {
   NodeRef write_merged_leaf(const Slot& s) {
     const uint32_t packs = static_cast<uint32_t>((s.triangles + 3) / 4);
     const LeafHeader header{static_cast<uint32_t>(s.triangles), packs};
-    const size_t bytes = whole_lines(leaf_bytes(&header, false));
+    const size_t bytes = whole_lines(leaf_bytes(header, false));
     if (leaf_used_ + bytes > leaf_capacity_)
       throw std::logic_error("BVH collapse: merged leaves larger than their sources");
-    auto* leaf = reinterpret_cast<LeafHeader*>(leaf_base_ + leaf_used_);
+    char* leaf = leaf_base_ + leaf_used_;
     leaf_used_ += bytes;
-    *leaf = header;
-    TriPack4* out = leaf_payload<TriPack4>(leaf);
+    std::memcpy(leaf + leaf_header_offset(packs), &header, sizeof(header));
+    auto* out = reinterpret_cast<TriPack4*>(leaf);
     std::memset(static_cast<void*>(out), 0, packs * sizeof(TriPack4));
     for (uint32_t k = 0; k < packs; ++k)
       for (int lane = 0; lane < 4; ++lane) out[k].prim[lane] = kInvalidId;
     uint32_t next = 0;
     for (int p = 0; p < s.parts; ++p) {
-      const auto* source = ref_ptr<const LeafHeader>(s.part[p]);
-      const TriPack4* in = leaf_payload<TriPack4>(source);
-      for (uint32_t t = 0; t < source->prim_count; ++t, ++next) {
+      const TriPack4* in = leaf_packs(s.part[p]);
+      const uint32_t source_triangles = leaf_header(s.part[p])->prim_count;
+      for (uint32_t t = 0; t < source_triangles; ++t, ++next) {
         const TriPack4& a = in[t / 4];
         TriPack4& b = out[next / 4];
         for (int row = 0; row < 9; ++row) b.p[row][next % 4] = a.p[row][t % 4];

@@ -84,7 +84,7 @@ class CollapsePlan {
     nodes_.emplace_back();
     nodes_[index].ref = ref;
     if (is_leaf(ref)) {
-      triangles = static_cast<int>(ref_ptr<LeafHeader>(ref)->prim_count);
+      triangles = static_cast<int>(leaf_header(ref)->prim_count);
       Node& p = nodes_[index];
       std::fill(p.child, p.child + N, -1);
       p.as_leaf = true;

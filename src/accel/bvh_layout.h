@@ -71,7 +71,10 @@ inline float dequantize(float origin, float scale, uint8_t q) {
   return std::fma(static_cast<float>(q), scale, origin);
 }
 
-// Leaves start with this header; the payload follows at kLeafPayloadOffset.
+// A compact leaf starts with this header, its triangle indices following at
+// kLeafPayloadOffset. A fast leaf starts with its packs, so a ray's leaf test reads whole packs
+// from a line boundary (two packs span five lines, not six behind a header), and keeps the header
+// right after them, found through the pack count its reference carries (leaf_header).
 struct LeafHeader {
   uint32_t prim_count;  // triangles (fast: also the valid lanes over all packs)
   uint32_t pack_count;  // fast layout: packs of 4; compact: 0
@@ -89,18 +92,28 @@ struct alignas(16) TriPack4 {
 
 // Compact layout leaf payload: uint32_t triangle indices (into GeometryView::triangles).
 
-inline size_t leaf_bytes(const LeafHeader* leaf, bool compact) {
+// Bytes of a leaf, header included.
+inline size_t leaf_bytes(const LeafHeader& header, bool compact) {
   return kLeafPayloadOffset +
-         (compact ? leaf->prim_count * sizeof(uint32_t) : leaf->pack_count * sizeof(TriPack4));
+         (compact ? header.prim_count * sizeof(uint32_t) : header.pack_count * sizeof(TriPack4));
+}
+// Where a leaf's header lies from its start: after a fast leaf's `packs` packs (0 for compact).
+inline size_t leaf_header_offset(uint32_t packs) {
+  return packs * sizeof(TriPack4);
 }
 
-template <class T>
-inline const T* leaf_payload(const LeafHeader* leaf) {
-  return reinterpret_cast<const T*>(reinterpret_cast<const char*>(leaf) + kLeafPayloadOffset);
+// The header of the leaf `ref` (a compact leaf's reference carries code 0).
+inline const LeafHeader* leaf_header(NodeRef ref) {
+  return reinterpret_cast<const LeafHeader*>(ref_ptr<const char>(ref) +
+                                             leaf_header_offset(leaf_code(ref)));
 }
-template <class T>
-inline T* leaf_payload(LeafHeader* leaf) {
-  return reinterpret_cast<T*>(reinterpret_cast<char*>(leaf) + kLeafPayloadOffset);
+// A fast leaf's packs.
+inline const TriPack4* leaf_packs(NodeRef ref) {
+  return ref_ptr<const TriPack4>(ref);
+}
+// A compact leaf's triangle indices.
+inline const uint32_t* leaf_ids(NodeRef ref) {
+  return reinterpret_cast<const uint32_t*>(ref_ptr<const char>(ref) + kLeafPayloadOffset);
 }
 
 }  // namespace tuneray::bvh

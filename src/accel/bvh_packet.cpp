@@ -217,7 +217,7 @@ inline void intersect_leaf_packet(NodeRef leaf, Packet& pk, uint32_t mask) {
     }
     return;
   }
-  const TriPack4* packs = leaf_payload<TriPack4>(ref_ptr<LeafHeader>(leaf));
+  const TriPack4* packs = leaf_packs(leaf);
   const uint32_t pack_count = leaf_code(leaf);
   for (uint32_t k = 0; k < pack_count; ++k) {
     for (int j = 0; j < 4 && packs[k].prim[j] != kInvalidId; ++j)

@@ -152,11 +152,12 @@ struct NodeTest<2, kCompact, kRobust> {
 // ---- leaves: returns true on a hit (any-hit: stop; closest: tfar and hit updated).
 
 template <bool kRobust, bool kAnyHit>
-inline bool intersect_compact_leaf(const LeafHeader* leaf, const TraversalContext& ctx,
-                                   const TraversalRay& r, float& tfar, Hit* hit) {
+inline bool intersect_compact_leaf(NodeRef leaf, const TraversalContext& ctx, const TraversalRay& r,
+                                   float& tfar, Hit* hit) {
   bool found = false;
-  const uint32_t* ids = leaf_payload<uint32_t>(leaf);
-  for (uint32_t i = 0; i < leaf->prim_count; ++i) {
+  const uint32_t* ids = leaf_ids(leaf);
+  const uint32_t prim_count = leaf_header(leaf)->prim_count;
+  for (uint32_t i = 0; i < prim_count; ++i) {
     const Triangle& tri = ctx.triangles[ids[i]];
     const Vec3f& a = ctx.positions[tri.v[0]];
     const Vec3f& b = ctx.positions[tri.v[1]];
@@ -178,7 +179,7 @@ template <bool kRobust, bool kAnyHit>
 [[gnu::always_inline]] inline bool intersect_fast_leaf(NodeRef ref, const TraversalRay& r,
                                                        float& tfar, Hit* hit) {
   bool found = false;
-  const TriPack4* packs = leaf_payload<TriPack4>(ref_ptr<LeafHeader>(ref));
+  const TriPack4* packs = leaf_packs(ref);
   const uint32_t pack_count = leaf_code(ref);
   for (uint32_t k = 0; k < pack_count; ++k) {
     const TriPack4& p = packs[k];
@@ -245,7 +246,7 @@ inline int leaf_children(const NodeRef (&child)[N]) {
 }
 
 // Brings a block the ray will visit soon into L1 while the current one is tested: the lines of an
-// N-wide node (2, 3 or 4; a leaf's header and first pack span three).
+// N-wide node (2, 3 or 4; a leaf's first pack spans three).
 template <int N>
 inline void prefetch_block(NodeRef ref) {
   const char* p = ref_ptr<const char>(ref);
@@ -255,7 +256,7 @@ inline void prefetch_block(NodeRef ref) {
   if constexpr (N >= 8) _mm_prefetch(p + 192, _MM_HINT_T0);
 }
 
-// The header and first pack of a fast leaf (three lines), or a compact leaf's header and ids.
+// A fast leaf's first pack (three lines), or a compact leaf's header and ids.
 template <bool kCompact>
 inline void prefetch_leaf(NodeRef ref) {
   const char* p = ref_ptr<const char>(ref);
@@ -309,9 +310,7 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
           for (int m = leaves; m; m &= m - 1) {
             const NodeRef leaf = node.child[__builtin_ctz(m)];
             if constexpr (kCompact) {
-              if (intersect_compact_leaf<kRobust, true>(ref_ptr<LeafHeader>(leaf), ctx, r, tfar,
-                                                        hit))
-                return true;
+              if (intersect_compact_leaf<kRobust, true>(leaf, ctx, r, tfar, hit)) return true;
             } else {
               if (intersect_fast_leaf<kRobust, true>(leaf, r, tfar, hit)) return true;
             }
@@ -378,8 +377,7 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
     {
       bool leaf_hit;
       if constexpr (kCompact)
-        leaf_hit =
-            intersect_compact_leaf<kRobust, kAnyHit>(ref_ptr<LeafHeader>(cur), ctx, r, tfar, hit);
+        leaf_hit = intersect_compact_leaf<kRobust, kAnyHit>(cur, ctx, r, tfar, hit);
       else
         leaf_hit = intersect_fast_leaf<kRobust, kAnyHit>(cur, r, tfar, hit);
       if (leaf_hit) {

@@ -29,11 +29,11 @@ struct Walker {
   static void stats(NodeRef ref, double area, int level, double trav, double isect, TreeStats& s) {
     s.depth = std::max(s.depth, level);
     if (is_leaf(ref)) {
-      const auto* leaf = ref_ptr<LeafHeader>(ref);
+      const LeafHeader* leaf = leaf_header(ref);
       s.leaf_count++;
       s.references += leaf->prim_count;
       s.max_leaf_size = std::max<size_t>(s.max_leaf_size, leaf->prim_count);
-      s.leaf_bytes += leaf_bytes(leaf, kCompact);
+      s.leaf_bytes += leaf_bytes(*leaf, kCompact);
       s.sah_cost += isect * area * leaf->prim_count;
       s.pack_sah_cost += isect * area * ((leaf->prim_count + 3) / 4);
       if (!kCompact && leaf_code(ref) != leaf->pack_count) s.leaf_code_mismatches++;
@@ -67,7 +67,7 @@ struct Walker {
   }
 
   static size_t block_bytes(NodeRef ref) {
-    if (is_leaf(ref)) return whole_lines(leaf_bytes(ref_ptr<LeafHeader>(ref), kCompact));
+    if (is_leaf(ref)) return whole_lines(leaf_bytes(*leaf_header(ref), kCompact));
     return whole_lines(sizeof(Node));
   }
 
@@ -86,8 +86,7 @@ struct Walker {
     char* dst = base + offset;
     offset += block_bytes(ref);
     if (is_leaf(ref)) {
-      const auto* leaf = ref_ptr<LeafHeader>(ref);
-      std::memcpy(dst, leaf, leaf_bytes(leaf, kCompact));
+      std::memcpy(dst, ref_ptr<const char>(ref), leaf_bytes(*leaf_header(ref), kCompact));
       return make_leaf_ref(dst, leaf_code(ref));
     }
     std::memcpy(dst, ref_ptr<Node>(ref), sizeof(Node));

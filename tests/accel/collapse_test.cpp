@@ -52,14 +52,14 @@ struct WideCheck : WideCounts {
   explicit WideCheck(const Mesh& m) : mesh(m) {}
 
   BBox leaf_box(bvh::NodeRef ref) {
-    const auto* leaf = bvh::ref_ptr<bvh::LeafHeader>(ref);
+    const bvh::LeafHeader* leaf = bvh::leaf_header(ref);
     BBox box;
     if constexpr (kCompact) {
-      const uint32_t* ids = bvh::leaf_payload<uint32_t>(leaf);
+      const uint32_t* ids = bvh::leaf_ids(ref);
       for (uint32_t i = 0; i < leaf->prim_count; ++i)
         for (uint32_t v : mesh.triangles[ids[i]].v) box.extend(mesh.positions[v]);
     } else {
-      const auto* packs = bvh::leaf_payload<bvh::TriPack4>(leaf);
+      const auto* packs = bvh::leaf_packs(ref);
       for (uint32_t i = 0; i < leaf->prim_count; ++i)
         for (uint32_t v : mesh.triangles[packs[i / 4].prim[i % 4]].v) box.extend(mesh.positions[v]);
     }
