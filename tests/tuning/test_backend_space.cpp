@@ -135,6 +135,7 @@ TEST(BackendSpace, SeedsAreEmbreesBvh8LeavesAndReinsertionOnlyWhereItsBuildIsFre
   const BvhConfig reinserted = to_bvh_config(render[2]);
   EXPECT_TRUE(reinserted.reinserts());
   EXPECT_TRUE(reinserted.collapses_optimally());
+  EXPECT_TRUE(reinserted.is_static);
   EXPECT_EQ(reinserted.min_leaf, 4);
   EXPECT_EQ(reinserted.max_leaf, 28);
   EXPECT_EQ(reinserted.sah_block_size, 4);
