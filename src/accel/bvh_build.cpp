@@ -70,7 +70,7 @@ struct Callbacks {
     const LeafHeader header{static_cast<uint32_t>(count), static_cast<uint32_t>(packs)};
     const size_t bytes = leaf_bytes(header, kCompact);
     auto* leaf = static_cast<char*>(rtcThreadLocalAlloc(alloc, bytes, kCacheLine));
-    std::memcpy(leaf + leaf_header_offset(static_cast<uint32_t>(packs)), &header, sizeof(header));
+    write_leaf_header(leaf, header);
     if constexpr (kCompact) {
       auto* ids = reinterpret_cast<uint32_t*>(leaf + kLeafPayloadOffset);
       for (size_t i = 0; i < count; ++i) ids[i] = prims[i].primID;

@@ -212,7 +212,7 @@ class Collapser {
       throw std::logic_error("BVH collapse: merged leaves larger than their sources");
     char* leaf = leaf_base_ + leaf_used_;
     leaf_used_ += bytes;
-    std::memcpy(leaf + leaf_header_offset(packs), &header, sizeof(header));
+    write_leaf_header(leaf, header);
     auto* out = reinterpret_cast<TriPack4*>(leaf);
     std::memset(static_cast<void*>(out), 0, packs * sizeof(TriPack4));
     for (uint32_t k = 0; k < packs; ++k)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 namespace tuneray::bvh {
 
@@ -100,6 +101,12 @@ inline size_t leaf_bytes(const LeafHeader& header, bool compact) {
 // Where a leaf's header lies from its start: after a fast leaf's `packs` packs (0 for compact).
 inline size_t leaf_header_offset(uint32_t packs) {
   return packs * sizeof(TriPack4);
+}
+
+// Writes a leaf's header where leaf_header finds it: after a fast leaf's packs, first in a
+// compact one (header.pack_count is 0 there).
+inline void write_leaf_header(char* leaf, const LeafHeader& header) {
+  std::memcpy(leaf + leaf_header_offset(header.pack_count), &header, sizeof(header));
 }
 
 // The header of the leaf `ref` (a compact leaf's reference carries code 0).

@@ -402,15 +402,10 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
 
 // ---- batches: groups of rays of one direction octant, for the packet and stream kernels.
 
-// Bit a set = the direction is negative along axis a, by the sign test of make_traversal_ray (a
-// -0 or tiny negative component counts as negative), so a group's shared near planes are the ones
-// each of its rays would use alone.
-inline int direction_octant(const Vec3f& d) {
-  return (std::signbit(d.x) ? 1 : 0) | (std::signbit(d.y) ? 2 : 0) | (std::signbit(d.z) ? 4 : 0);
-}
-
-// direction_octant of a ray, from one load of its direction's sign bits (dir and tfar are the
-// ray's second 16 bytes).
+// Bit a set = the ray's direction is negative along axis a, by the sign test of
+// make_traversal_ray (a -0 or tiny negative component counts as negative), so a group's shared
+// near planes are the ones each of its rays would use alone. The sign bits come from one load
+// (dir and tfar are the ray's second 16 bytes).
 inline int ray_octant(const Ray& ray) {
   static_assert(offsetof(Ray, dir) + 4 * sizeof(float) <= sizeof(Ray), "dir and one float");
   return _mm_movemask_ps(_mm_loadu_ps(&ray.dir.x)) & 7;
