@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "render/simd8_lookup.h"
+
 namespace tuneray {
 
 namespace {
@@ -44,8 +46,8 @@ LightSampler::LightSampler(const Scene& scene, const EnvironmentLight& environme
   const size_t n = selection_.size();
   for (auto* v : {&q.px, &q.py, &q.pz, &q.e1x, &q.e1y, &q.e1z, &q.e2x, &q.e2y, &q.e2z, &q.nx, &q.ny,
                   &q.nz, &q.area, &q.rx, &q.ry, &q.rz, &q.pmf, &q.cdf})
-    v->assign(n, 0.0f);
-  q.two_sided.assign(n, 0);
+    v->assign(simd::lookup_table_size(n), 0.0f);  // padded for sample8's lookups
+  q.two_sided.assign(simd::lookup_table_size(n), 0);
   for (size_t j = 0; j < n; ++j) {
     q.pmf[j] = selection_.pmf(j);
     q.cdf[j] = selection_.cdf(j);
@@ -72,12 +74,6 @@ LightSampler::LightSampler(const Scene& scene, const EnvironmentLight& environme
     q.rx[j] = radiance.x, q.ry[j] = radiance.y, q.rz[j] = radiance.z;
   }
 }
-
-namespace {
-simd::F8 gather(const std::vector<float>& table, simd::I8 index) {
-  return simd::F8(_mm256_i32gather_ps(table.data(), index.v, 4));
-}
-}  // namespace
 
 LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F8 u0, simd::F8 u1,
                                    uint32_t lanes) const {
@@ -113,7 +109,10 @@ LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F
   }
   // Lanes outside `lanes` read bin 0, which exists; their results are discarded.
   index = simd::select(M8::from_bits(lanes), index, I8(0));
-  const F8 pmf = gather(planes_.pmf, index);
+  const auto at_bin = [&](const std::vector<float>& plane) {
+    return simd::lookup(plane, n, index);
+  };
+  const F8 pmf = at_bin(planes_.pmf);
   M8 ok = M8::from_bits(lanes) & (pmf > F8(0.0f));
 
   const M8 is_env =
@@ -121,10 +120,8 @@ LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F
   const M8 is_point = ok.and_not(is_env) & (index >= I8(static_cast<int32_t>(point_begin_)));
   const M8 is_triangle = ok.and_not(is_env | is_point);
 
-  const V8 position(gather(planes_.px, index), gather(planes_.py, index),
-                    gather(planes_.pz, index));
-  const V8 radiance(gather(planes_.rx, index), gather(planes_.ry, index),
-                    gather(planes_.rz, index));
+  const V8 position(at_bin(planes_.px), at_bin(planes_.py), at_bin(planes_.pz));
+  const V8 radiance(at_bin(planes_.rx), at_bin(planes_.ry), at_bin(planes_.rz));
   V8 target = position;
   if (is_triangle.any()) {
     // sample_uniform_triangle, then the point on the triangle.
@@ -132,8 +129,8 @@ LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F
     const F8 b0 = simd::select(upper, 0.5f * u0, u0 - 0.5f * u1);
     const F8 b1 = simd::select(upper, u1 - 0.5f * u0, 0.5f * u1);
     const F8 bx = b1, by = 1.0f - b0 - b1;
-    const V8 e1(gather(planes_.e1x, index), gather(planes_.e1y, index), gather(planes_.e1z, index));
-    const V8 e2(gather(planes_.e2x, index), gather(planes_.e2y, index), gather(planes_.e2z, index));
+    const V8 e1(at_bin(planes_.e1x), at_bin(planes_.e1y), at_bin(planes_.e1z));
+    const V8 e2(at_bin(planes_.e2x), at_bin(planes_.e2y), at_bin(planes_.e2z));
     target = simd::select(is_triangle, position + e1 * bx + e2 * by, position);
   }
   const V8 d = target - p;
@@ -150,16 +147,14 @@ LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F
 
   const M8 triangles = is_triangle & ok;
   if (triangles.any()) {
-    const V8 normal(gather(planes_.nx, index), gather(planes_.ny, index),
-                    gather(planes_.nz, index));
+    const V8 normal(at_bin(planes_.nx), at_bin(planes_.ny), at_bin(planes_.nz));
     const F8 cos_signed = dot(normal, wi);
     const F8 cos_light = simd::abs(cos_signed);
     const M8 lit = triangles & (cos_light > F8(1e-7f));
     // emitted(): one-sided emitters light only the side their normal faces (dot(n, -wi) > 0).
-    const M8 two_sided(
-        _mm256_castsi256_ps(_mm256_i32gather_epi32(planes_.two_sided.data(), index.v, 4)));
+    const M8 two_sided(_mm256_castsi256_ps(simd::lookup(planes_.two_sided, n, index).v));
     const M8 facing = two_sided | (dot(normal, -wi) > F8(0.0f));
-    const F8 area = gather(planes_.area, index);
+    const F8 area = at_bin(planes_.area);
     ls.wi = simd::select(lit, wi, ls.wi);
     ls.distance = simd::select(lit, distance, ls.distance);
     ls.radiance = simd::select(lit, keep(facing, radiance), ls.radiance);

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "render/simd8_lookup.h"
 #include "render/surface.h"
 
 namespace tuneray {
@@ -31,6 +32,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, const Accel& accel,
     mp.alpha_x.push_back(p.alpha_x);
     mp.alpha_y.push_back(p.alpha_y);
   }
+  // Padded for shade8's lookups (simd8_lookup.h).
+  simd::pad_for_lookup(mp.type);
+  for (auto* plane : {&mp.base_r, &mp.base_g, &mp.base_b, &mp.specular_r, &mp.specular_g,
+                      &mp.specular_b, &mp.alpha_x, &mp.alpha_y})
+    simd::pad_for_lookup(*plane);
   for (const Material& m : scene.materials) {
     mp.emissive.push_back(m.is_emissive() ? 1 : 0);
     mp.textured.push_back(m.base_texture != kNoTexture ? 1 : 0);

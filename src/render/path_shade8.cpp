@@ -9,6 +9,7 @@
 
 #include "render/bsdf8.h"
 #include "render/path_integrator.h"
+#include "render/simd8_lookup.h"
 #include "render/surface.h"
 
 namespace tuneray {
@@ -207,10 +208,11 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   // --- The material at each hit (resolve_bsdf), regularized (regularize), 8 wide.
   const simd::I8 material = simd::I8::load(material_of);
   const MaterialPlanes& mp = material_planes_;
+  const size_t materials = scene_.materials.size();
   auto gather = [&](const std::vector<float>& plane) {
-    return F8(_mm256_i32gather_ps(plane.data(), material.v, 4));
+    return simd::lookup(plane, materials, material);
   };
-  const simd::I8 type(_mm256_i32gather_epi32(mp.type.data(), material.v, 4));
+  const simd::I8 type = simd::lookup(mp.type, materials, material);
   V8 base(gather(mp.base_r), gather(mp.base_g), gather(mp.base_b));
   if (textured) {
     // resolve_bsdf's lookup: at the interpolated UV, or (0, 0) on a mesh without UVs.

@@ -84,8 +84,12 @@ TileRenderer::TileRenderer(const Scene& scene, const Accel& accel, const CameraD
       camera_(camera, settings.width, settings.height),
       integrator_(scene, accel, settings),
       prototype_(prototype),
-      wave_pool_(std::make_unique<WavePool>()),
-      wave_order_(wave_pixel_order(settings.width, settings.height)) {}
+      wave_pool_(std::make_unique<WavePool>()) {
+  const std::vector<uint32_t> order = wave_pixel_order(settings.width, settings.height);
+  const uint32_t width = static_cast<uint32_t>(std::max(1, settings.width));
+  wave_pixels_.reserve(order.size());
+  for (uint32_t p : order) wave_pixels_.push_back({p % width, p / width});
+}
 
 TileRenderer::~TileRenderer() = default;
 
@@ -96,7 +100,10 @@ int TileRenderer::tile_count() const {
 
 PassStats TileRenderer::render_pass(Film& film, uint32_t first_sample, uint32_t spp,
                                     const std::function<void()>& on_tile_done) const {
-  PixelWork work{[first_sample](size_t) { return first_sample; }, [spp](size_t) { return spp; }};
+  PixelWork work;
+  work.uniform = true;
+  work.uniform_first = first_sample;
+  work.uniform_count = spp;
   return run(film, work, on_tile_done);
 }
 
@@ -303,7 +310,7 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
           for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
               size_t pixel = static_cast<size_t>(y) * settings_.width + x;
-              uint32_t first = work.first(pixel), n = work.count(pixel);
+              uint32_t first = work.first_of(pixel), n = work.count_of(pixel);
               for (uint32_t s = 0; s < n; ++s)
                 b.ids.push_back({static_cast<uint32_t>(x), static_cast<uint32_t>(y), first + s});
             }
@@ -326,25 +333,37 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
 PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                                       const ClampThresholds& clamp) const {
   const int width = settings_.width;
-  const size_t pixel_count = static_cast<size_t>(width) * settings_.height;
+  const size_t pixel_count = wave_pixels_.size();
   const size_t batch = static_cast<size_t>(std::max(1, settings_.quality.batch_size));
   const bool profile = settings_.quality.profile_phases;
 
   // Chunks of whole pixels (so each pixel has one writer and sums its samples in order) with
-  // at most `batch` paths, unless one pixel alone has more; positions in wave_order_.
+  // at most `batch` paths, unless one pixel alone has more; positions in wave_pixels_. A
+  // uniform pass's chunks are equal runs of pixels; otherwise each position's samples are
+  // tabled once, in wave order, so the chunks read them in sequence.
   std::vector<size_t> chunk_begin{0};
-  std::vector<uint32_t> first(pixel_count), count(pixel_count);
+  std::vector<uint32_t> first, count;  // per position, for a pass that is not uniform
   uint64_t total_samples = 0;
-  for (size_t k = 0, in_chunk = 0; k < pixel_count; ++k) {
-    const uint32_t i = wave_order_[k];
-    first[i] = work.first(i);
-    count[i] = work.count(i);
-    total_samples += count[i];
-    if (in_chunk > 0 && in_chunk + count[i] > batch) {
-      chunk_begin.push_back(k);
-      in_chunk = 0;
+  if (work.uniform) {
+    const size_t spp = work.uniform_count;
+    const size_t per_chunk =
+        spp == 0 ? std::max<size_t>(1, pixel_count) : std::max<size_t>(1, batch / spp);
+    for (size_t k = per_chunk; k < pixel_count; k += per_chunk) chunk_begin.push_back(k);
+    total_samples = static_cast<uint64_t>(spp) * pixel_count;
+  } else {
+    first.resize(pixel_count);
+    count.resize(pixel_count);
+    for (size_t k = 0, in_chunk = 0; k < pixel_count; ++k) {
+      const size_t i = static_cast<size_t>(wave_pixels_[k].y) * width + wave_pixels_[k].x;
+      first[k] = work.first(i);
+      count[k] = work.count(i);
+      total_samples += count[k];
+      if (in_chunk > 0 && in_chunk + count[k] > batch) {
+        chunk_begin.push_back(k);
+        in_chunk = 0;
+      }
+      in_chunk += count[k];
     }
-    in_chunk += count[i];
   }
   chunk_begin.push_back(pixel_count);
 
@@ -359,11 +378,10 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                         uint64_t t_chunk = profile ? now_ns() : 0;
                         b.ids.clear();
                         for (size_t k = chunk_begin[chunk]; k < chunk_begin[chunk + 1]; ++k) {
-                          const uint32_t p = wave_order_[k];
-                          const uint32_t x = static_cast<uint32_t>(p % width);
-                          const uint32_t y = static_cast<uint32_t>(p / width);
-                          for (uint32_t s = 0; s < count[p]; ++s)
-                            b.ids.push_back({x, y, first[p] + s});
+                          const WavePixel px = wave_pixels_[k];
+                          const uint32_t f = work.uniform ? work.uniform_first : first[k];
+                          const uint32_t n = work.uniform ? work.uniform_count : count[k];
+                          for (uint32_t s = 0; s < n; ++s) b.ids.push_back({px.x, px.y, f + s});
                         }
                         if (!b.ids.empty()) {
                           start_paths(b, clamp);

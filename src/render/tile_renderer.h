@@ -79,9 +79,15 @@ class TileRenderer {
   const RenderSettings& settings() const { return settings_; }
 
  private:
-  // Samples of pixel i: indices [first(i), first(i) + count(i)).
+  // Samples of pixel i: indices [first(i), first(i) + count(i)). A uniform pass (every pixel
+  // the same samples: each frame the tuner measures) leaves the functions empty, so the
+  // schedulers build no per-pixel tables for it.
   struct PixelWork {
     std::function<uint32_t(size_t)> first, count;
+    bool uniform = false;
+    uint32_t uniform_first = 0, uniform_count = 0;
+    uint32_t first_of(size_t i) const { return uniform ? uniform_first : first(i); }
+    uint32_t count_of(size_t i) const { return uniform ? uniform_count : count(i); }
   };
   PassStats run(Film& film, const PixelWork& work, const std::function<void()>& on_tile_done) const;
   PassStats run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
@@ -102,7 +108,12 @@ class TileRenderer {
   const Sampler& prototype_;
   struct WavePool;
   std::unique_ptr<WavePool> wave_pool_;  // per-thread wavefront buffers, kept between passes
-  std::vector<uint32_t> wave_order_;     // pixels in the order waves take them (wave_pixel_order.h)
+  struct WavePixel {
+    uint32_t x, y;
+  };
+  // The pixels in the order waves take them (wave_pixel_order.h), as coordinates: the chunks
+  // read them in that order, without a division per pixel.
+  std::vector<WavePixel> wave_pixels_;
 };
 
 }  // namespace tuneray
