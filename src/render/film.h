@@ -1,6 +1,7 @@
 // Progressive accumulation: a running sum of radiance and a sample count per pixel.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -50,58 +51,47 @@ class Film {
   static constexpr uint64_t kBytesPerPixelBound = 160;
 
   Film(int width, int height)
-      : sum_(width, height),
-        samples_(static_cast<size_t>(width) * height, 0),
-        square_sum_(static_cast<size_t>(width) * height),
-        half_sum_{Image(width, height), Image(width, height)},
-        half_samples_{std::vector<uint32_t>(static_cast<size_t>(width) * height, 0),
-                      std::vector<uint32_t>(static_cast<size_t>(width) * height, 0)} {}
+      : width_(std::max(0, width)),
+        height_(std::max(0, height)),
+        pixels_(static_cast<size_t>(width_) * height_) {}
 
-  int width() const { return sum_.width(); }
-  int height() const { return sum_.height(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
 
   // Single writer per pixel (tiles do not overlap), so no synchronisation. `squares` sums the
   // samples' squared channels (variance estimates for adaptive sampling and error estimates).
   // Samples given without their indices all go to the half of the pixel's sample count's
   // parity, so one-sample adds alternate between the halves as the schedulers' indices do.
   void add(int x, int y, Color radiance_sum, uint32_t count, const SquareSum& squares = {}) {
-    const size_t i = static_cast<size_t>(y) * width() + x;
-    const int half = samples_[i] & 1;
-    add_full(i, x, y, radiance_sum, count, squares);
-    half_sum_[half].at(x, y) += radiance_sum;
-    half_samples_[half][i] += count;
+    Pixel& p = pixel(x, y);
+    const int half = p.samples & 1;
+    p.add_full(radiance_sum, count, squares);
+    p.half_sum[half] += radiance_sum;
+    p.half_samples[half] += count;
   }
   void add(int x, int y, const PixelSamples& s) {
-    const size_t i = static_cast<size_t>(y) * width() + x;
-    add_full(i, x, y, s.sum, s.count, s.squares);
+    Pixel& p = pixel(x, y);
+    p.add_full(s.sum, s.count, s.squares);
     for (int h = 0; h < 2; ++h) {
-      half_sum_[h].at(x, y) += s.half_sum[h];
-      half_samples_[h][i] += s.half_count[h];
+      p.half_sum[h] += s.half_sum[h];
+      p.half_samples[h] += s.half_count[h];
     }
   }
-  // Asks for pixel (x, y)'s lines in every array an add writes, ahead of the add: the
-  // schedulers add pixels in blocks (wave_pixel_order.h), whose rows are too short for the
-  // hardware's stream prefetchers, and a 640×360 film is larger than the caches. Always
+  // Asks for pixel (x, y)'s record ahead of an add: the schedulers add pixels in blocks
+  // (wave_pixel_order.h), whose rows are too short for the hardware's stream prefetchers, and
+  // a 640×360 film is larger than the caches. A record spans at most two lines. Always
   // inlined: GCC 12 finds an out-of-line copy free of side effects and deletes its calls.
   [[gnu::always_inline]] void prefetch(int x, int y) const {
-    const size_t i = static_cast<size_t>(y) * width() + x;
-    __builtin_prefetch(&sum_.at(x, y), 1);
-    __builtin_prefetch(&samples_[i], 1);
-    __builtin_prefetch(&square_sum_[i].r, 1);
-    __builtin_prefetch(&square_sum_[i].b, 1);  // a 24-byte sum may cross a line
-    for (int h = 0; h < 2; ++h) {
-      __builtin_prefetch(&half_sum_[h].at(x, y), 1);
-      __builtin_prefetch(&half_samples_[h][i], 1);
-    }
+    const char* p = reinterpret_cast<const char*>(&pixel(x, y));
+    __builtin_prefetch(p, 1);
+    __builtin_prefetch(p + sizeof(Pixel) - 1, 1);
   }
-  uint32_t samples(int x, int y) const { return samples_[static_cast<size_t>(y) * width() + x]; }
-  uint64_t total_samples() const;                                 // over all pixels
-  const Color& sum(int x, int y) const { return sum_.at(x, y); }  // of the pixel's samples
+  uint32_t samples(int x, int y) const { return pixel(x, y).samples; }
+  uint64_t total_samples() const;                                   // over all pixels
+  const Color& sum(int x, int y) const { return pixel(x, y).sum; }  // of the pixel's samples
   // The half films: samples of even (half 0) and odd (half 1) index.
-  uint32_t half_samples(int half, int x, int y) const {
-    return half_samples_[half][static_cast<size_t>(y) * width() + x];
-  }
-  const Color& half_sum(int half, int x, int y) const { return half_sum_[half].at(x, y); }
+  uint32_t half_samples(int half, int x, int y) const { return pixel(x, y).half_samples[half]; }
+  const Color& half_sum(int half, int x, int y) const { return pixel(x, y).half_sum[half]; }
 
   // Estimated variance of the pixel's mean, averaged over r, g and b (sample variance / n); 0
   // below 2 samples.
@@ -120,21 +110,28 @@ class Film {
   void clear();
 
  private:
-  // The full film's part of an add; `i` is pixel (x, y)'s index.
-  void add_full(size_t i, int x, int y, Color radiance_sum, uint32_t count,
-                const SquareSum& squares) {
-    sum_.at(x, y) += radiance_sum;
-    samples_[i] += count;
-    square_sum_[i].r += squares.r;
-    square_sum_[i].g += squares.g;
-    square_sum_[i].b += squares.b;
-  }
+  // Everything an add writes for one pixel, side by side: an add at one sample per pixel
+  // touches one record (two cache lines) instead of a line in each of seven arrays.
+  struct Pixel {
+    SquareSum squares;
+    Color sum{0.0f};
+    uint32_t samples = 0;
+    Color half_sum[2] = {Color(0.0f), Color(0.0f)};
+    uint32_t half_samples[2] = {0, 0};
+    // The full film's part of an add.
+    void add_full(Color radiance_sum, uint32_t count, const SquareSum& s) {
+      sum += radiance_sum;
+      samples += count;
+      squares.r += s.r;
+      squares.g += s.g;
+      squares.b += s.b;
+    }
+  };
+  Pixel& pixel(int x, int y) { return pixels_[static_cast<size_t>(y) * width_ + x]; }
+  const Pixel& pixel(int x, int y) const { return pixels_[static_cast<size_t>(y) * width_ + x]; }
 
-  Image sum_;
-  std::vector<uint32_t> samples_;
-  std::vector<SquareSum> square_sum_;
-  Image half_sum_[2];
-  std::vector<uint32_t> half_samples_[2];
+  int width_, height_;
+  std::vector<Pixel> pixels_;
 };
 
 }  // namespace tuneray
