@@ -2,6 +2,7 @@
 // four dimensions in one call (the blue-noise sampler reads them with one 16-byte load).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -64,11 +65,17 @@ class SamplerBankOf final : public SamplerBank {
   void start(size_t first, std::span<const PixelSampleId> ids, float* const* first4) override {
     if (samplers_.size() < first + ids.size()) samplers_.resize(first + ids.size(), prototype_);
     size_t i = 0;
+    // Samplers that read tables ask for a start's lines this many ids ahead.
+    if constexpr (requires(const S& s, uint32_t x) { s.prefetch_start(x, x); }) {
+      for (size_t j = 0; j < std::min(kPrefetchAhead, ids.size()); ++j)
+        prototype_.prefetch_start(ids[j].x, ids[j].y);
+    }
     // Samplers that can seed four at once (their seeding is a chain of 64-bit multiplies).
     if constexpr (requires(S * s[4], const PixelSampleId* id, float* const* out, size_t at) {
                     S::start4(s, id, out, at);
                   }) {
       for (; i + 4 <= ids.size(); i += 4) {
+        prefetch_starts(ids, i + kPrefetchAhead);
         S* s[4];
         for (int j = 0; j < 4; ++j) s[j] = &samplers_[first + i + j];
         S::start4(s, &ids[i], first4, i);
@@ -84,9 +91,12 @@ class SamplerBankOf final : public SamplerBank {
   void next4(std::span<const uint32_t> slots, std::span<const uint32_t> positions, int quads,
              float* const* planes) override {
     size_t k = 0;
+    for (size_t j = 0; j < std::min(kPrefetchAhead, slots.size()); ++j) prefetch_next(slots[j]);
     // Four slots at a time whose numbers all come from their PCG generators (every PcgSampler;
     // a blue-noise sampler past its tables) step those generators in AVX2 lanes.
     for (; k + 4 <= slots.size(); k += 4) {
+      for (size_t j = k + kPrefetchAhead; j < std::min(slots.size(), k + kPrefetchAhead + 4); ++j)
+        prefetch_next(slots[j]);
       Pcg32* g[4];
       bool lanes = true;
       for (int j = 0; j < 4; ++j) {
@@ -115,6 +125,18 @@ class SamplerBankOf final : public SamplerBank {
   }
 
  private:
+  static constexpr size_t kPrefetchAhead = 8;
+  // The lines a table-reading sampler's next draw or start needs (none for the others).
+  [[gnu::always_inline]] void prefetch_next(uint32_t slot) const {
+    if constexpr (requires(const S& s) { s.prefetch_next(); }) samplers_[slot].prefetch_next();
+  }
+  [[gnu::always_inline]] void prefetch_starts(std::span<const PixelSampleId> ids,
+                                              size_t from) const {
+    if constexpr (requires(const S& s, uint32_t x) { s.prefetch_start(x, x); }) {
+      for (size_t j = from; j < std::min(ids.size(), from + 4); ++j)
+        prototype_.prefetch_start(ids[j].x, ids[j].y);
+    }
+  }
   void draw(size_t k, std::span<const uint32_t> slots, std::span<const uint32_t> positions,
             int quads, float* const* planes) {
     S& s = samplers_[slots[k]];

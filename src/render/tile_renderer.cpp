@@ -101,18 +101,15 @@ int TileRenderer::tile_count() const {
 PassStats TileRenderer::render_pass(Film& film, uint32_t first_sample, uint32_t spp,
                                     const std::function<void()>& on_tile_done) const {
   PixelWork work;
-  work.uniform = true;
   work.uniform_first = first_sample;
   work.uniform_count = spp;
   return run(film, work, on_tile_done);
 }
 
 PassStats TileRenderer::render_extra(Film& film, const std::vector<uint32_t>& extra) const {
-  const int w = settings_.width;
-  PixelWork work{[&film, w](size_t i) {
-                   return film.samples(static_cast<int>(i % w), static_cast<int>(i / w));
-                 },
-                 [&extra](size_t i) { return extra[i]; }};
+  PixelWork work;
+  work.film = &film;
+  work.extra = &extra;
   // The first sample index is read before the pixel is written: each pixel has one writer.
   return run(film, work, {});
 }
@@ -310,7 +307,8 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
           for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
               size_t pixel = static_cast<size_t>(y) * settings_.width + x;
-              uint32_t first = work.first_of(pixel), n = work.count_of(pixel);
+              uint32_t first = work.first(static_cast<uint32_t>(x), static_cast<uint32_t>(y)),
+                       n = work.count(pixel);
               for (uint32_t s = 0; s < n; ++s)
                 b.ids.push_back({static_cast<uint32_t>(x), static_cast<uint32_t>(y), first + s});
             }
@@ -344,7 +342,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
   std::vector<size_t> chunk_begin{0};
   std::vector<uint32_t> first, count;  // per position, for a pass that is not uniform
   uint64_t total_samples = 0;
-  if (work.uniform) {
+  if (work.uniform()) {
     const size_t spp = work.uniform_count;
     const size_t per_chunk =
         spp == 0 ? std::max<size_t>(1, pixel_count) : std::max<size_t>(1, batch / spp);
@@ -354,9 +352,10 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
     first.resize(pixel_count);
     count.resize(pixel_count);
     for (size_t k = 0, in_chunk = 0; k < pixel_count; ++k) {
-      const size_t i = static_cast<size_t>(wave_pixels_[k].y) * width + wave_pixels_[k].x;
-      first[k] = work.first(i);
-      count[k] = work.count(i);
+      const WavePixel px = wave_pixels_[k];
+      count[k] = work.count(static_cast<size_t>(px.y) * width + px.x);
+      // A partial pass leaves most pixels out: their film records are not read.
+      first[k] = count[k] > 0 ? work.first(px.x, px.y) : 0;
       total_samples += count[k];
       if (in_chunk > 0 && in_chunk + count[k] > batch) {
         chunk_begin.push_back(k);
@@ -379,8 +378,8 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                         b.ids.clear();
                         for (size_t k = chunk_begin[chunk]; k < chunk_begin[chunk + 1]; ++k) {
                           const WavePixel px = wave_pixels_[k];
-                          const uint32_t f = work.uniform ? work.uniform_first : first[k];
-                          const uint32_t n = work.uniform ? work.uniform_count : count[k];
+                          const uint32_t f = work.uniform() ? work.uniform_first : first[k];
+                          const uint32_t n = work.uniform() ? work.uniform_count : count[k];
                           for (uint32_t s = 0; s < n; ++s) b.ids.push_back({px.x, px.y, f + s});
                         }
                         if (!b.ids.empty()) {

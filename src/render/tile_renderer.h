@@ -79,15 +79,19 @@ class TileRenderer {
   const RenderSettings& settings() const { return settings_; }
 
  private:
-  // Samples of pixel i: indices [first(i), first(i) + count(i)). A uniform pass (every pixel
-  // the same samples: each frame the tuner measures) leaves the functions empty, so the
-  // schedulers build no per-pixel tables for it.
+  // Which samples each pixel takes: indices [first, first + count). A uniform pass gives every
+  // pixel the same (each frame the tuner measures); otherwise pixel (x, y), index
+  // i = y * width + x, continues from the film's count with extra[i] more (adaptive sampling,
+  // partial passes). Plain fields rather than callbacks: the schedulers read them per pixel.
   struct PixelWork {
-    std::function<uint32_t(size_t)> first, count;
-    bool uniform = false;
     uint32_t uniform_first = 0, uniform_count = 0;
-    uint32_t first_of(size_t i) const { return uniform ? uniform_first : first(i); }
-    uint32_t count_of(size_t i) const { return uniform ? uniform_count : count(i); }
+    const Film* film = nullptr;
+    const std::vector<uint32_t>* extra = nullptr;  // null: uniform
+    bool uniform() const { return extra == nullptr; }
+    uint32_t first(uint32_t x, uint32_t y) const {
+      return extra ? film->samples(static_cast<int>(x), static_cast<int>(y)) : uniform_first;
+    }
+    uint32_t count(size_t i) const { return extra ? (*extra)[i] : uniform_count; }
   };
   PassStats run(Film& film, const PixelWork& work, const std::function<void()>& on_tile_done) const;
   PassStats run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
