@@ -220,46 +220,58 @@ inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask, bool full) {
   return full ? load8<true>(v, i, mask) : load8<false>(v, i, mask);
 }
 
+// The chunk's own guide values, loaded once for its 25 taps (lanes past the row's end read 0;
+// a tap's lanes outside its mask weigh 0 whatever the centre holds there).
+struct CentreGuide {
+  __m256 nx, ny, nz, ar, ag, ab, px, py, pz, vis, vis_noise, lum;
+  CentreGuide(const GuidePlanes& g, const FloatPlane& luminance, ptrdiff_t c, __m256i mask,
+              bool whole) {
+    auto at = [&](const FloatPlane& v) { return load8(v, c, mask, whole); };
+    nx = at(g.nx), ny = at(g.ny), nz = at(g.nz);
+    ar = at(g.ar), ag = at(g.ag), ab = at(g.ab);
+    px = at(g.px), py = at(g.py), pz = at(g.pz);
+    vis = at(g.vis), vis_noise = at(g.vis_noise), lum = at(luminance);
+  }
+};
+
 // Adds the tap at offset (kx, ky) steps, pixel index `q` for the chunk's first lane, to the
 // sums of the eight pixels from index `c` on. `mask` marks lanes whose pixel and tap exist.
 // The whole chunk's taps inside the image (kFull) and the first-order sums are known when the
 // loop is compiled, so the hot path has neither masks nor branches.
 template <bool kFull, bool kFirstOrder>
 inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& noise,
-                    const GuidePlanes& guide, const StepConstants& k, ptrdiff_t c, ptrdiff_t q,
-                    __m256i mask, int kx, int ky, __m256 base_r, __m256 base_g, __m256 base_b,
-                    __m256 centre_noise, __m256 counts, TapSums& s) {
-  auto centre = [&](const FloatPlane& v) { return load8<kFull>(v, c, mask); };
+                    const GuidePlanes& guide, const CentreGuide& centre, const StepConstants& k,
+                    ptrdiff_t q, __m256i mask, int kx, int ky, __m256 base_r, __m256 base_g,
+                    __m256 base_b, __m256 centre_noise, __m256 counts, TapSums& s) {
   auto tap = [&](const FloatPlane& v) { return load8<kFull>(v, q, mask); };
   const __m256 zero = _mm256_setzero_ps();
-  __m256 wn = _mm256_mul_ps(centre(guide.nx), tap(guide.nx));
-  wn = _mm256_fmadd_ps(centre(guide.ny), tap(guide.ny), wn);
-  wn = _mm256_max_ps(_mm256_fmadd_ps(centre(guide.nz), tap(guide.nz), wn), zero);
+  __m256 wn = _mm256_mul_ps(centre.nx, tap(guide.nx));
+  wn = _mm256_fmadd_ps(centre.ny, tap(guide.ny), wn);
+  wn = _mm256_max_ps(_mm256_fmadd_ps(centre.nz, tap(guide.nz), wn), zero);
   for (int i = 0; i < k.normal_squarings; ++i) wn = _mm256_mul_ps(wn, wn);
-  const __m256 dr = _mm256_sub_ps(centre(guide.ar), tap(guide.ar));
-  const __m256 dg = _mm256_sub_ps(centre(guide.ag), tap(guide.ag));
-  const __m256 db = _mm256_sub_ps(centre(guide.ab), tap(guide.ab));
+  const __m256 dr = _mm256_sub_ps(centre.ar, tap(guide.ar));
+  const __m256 dg = _mm256_sub_ps(centre.ag, tap(guide.ag));
+  const __m256 db = _mm256_sub_ps(centre.ab, tap(guide.ab));
   __m256 albedo = _mm256_mul_ps(dr, dr);
   albedo = _mm256_fmadd_ps(dg, dg, albedo);
   albedo = _mm256_mul_ps(_mm256_fmadd_ps(db, db, albedo), _mm256_set1_ps(k.inv_albedo_sigma2));
-  const __m256 ex = _mm256_sub_ps(tap(guide.px), centre(guide.px));
-  const __m256 ey = _mm256_sub_ps(tap(guide.py), centre(guide.py));
-  const __m256 ez = _mm256_sub_ps(tap(guide.pz), centre(guide.pz));
-  __m256 off_plane = _mm256_mul_ps(centre(guide.nx), ex);
-  off_plane = _mm256_fmadd_ps(centre(guide.ny), ey, off_plane);
-  off_plane = _mm256_fmadd_ps(centre(guide.nz), ez, off_plane);
+  const __m256 ex = _mm256_sub_ps(tap(guide.px), centre.px);
+  const __m256 ey = _mm256_sub_ps(tap(guide.py), centre.py);
+  const __m256 ez = _mm256_sub_ps(tap(guide.pz), centre.pz);
+  __m256 off_plane = _mm256_mul_ps(centre.nx, ex);
+  off_plane = _mm256_fmadd_ps(centre.ny, ey, off_plane);
+  off_plane = _mm256_fmadd_ps(centre.nz, ez, off_plane);
   __m256 chord = _mm256_fmadd_ps(ex, ex, _mm256_set1_ps(kTinyChord));
   chord = _mm256_fmadd_ps(ey, ey, chord);
   chord = _mm256_fmadd_ps(ez, ez, chord);
   const __m256 plane =
       _mm256_mul_ps(_mm256_mul_ps(off_plane, off_plane),
                     _mm256_rcp_ps(_mm256_mul_ps(chord, _mm256_set1_ps(k.plane_sigma2))));
-  const __m256 dv = _mm256_sub_ps(centre(guide.vis), tap(guide.vis));
-  const __m256 vis_spread =
-      _mm256_add_ps(_mm256_add_ps(centre(guide.vis_noise), tap(guide.vis_noise)),
-                    _mm256_set1_ps(k.visibility_sigma2));
+  const __m256 dv = _mm256_sub_ps(centre.vis, tap(guide.vis));
+  const __m256 vis_spread = _mm256_add_ps(_mm256_add_ps(centre.vis_noise, tap(guide.vis_noise)),
+                                          _mm256_set1_ps(k.visibility_sigma2));
   const __m256 visibility = _mm256_mul_ps(_mm256_mul_ps(dv, dv), _mm256_rcp_ps(vis_spread));
-  const __m256 dl = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), _mm256_sub_ps(centre(lum), tap(lum)));
+  const __m256 dl = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), _mm256_sub_ps(centre.lum, tap(lum)));
   const __m256 spread =
       _mm256_add_ps(_mm256_add_ps(centre_noise, tap(noise)), _mm256_set1_ps(kTinyNoise));
   const __m256 luminance = _mm256_mul_ps(_mm256_mul_ps(dl, _mm256_rsqrt_ps(spread)), counts);
@@ -404,6 +416,7 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
         const __m256 base_g = _mm256_and_ps(load8(in.g, c, centre_mask, whole), has);
         const __m256 base_b = _mm256_and_ps(load8(in.b, c, centre_mask, whole), has);
         const __m256 centre_noise = load8(noise, c, centre_mask, whole);
+        const CentreGuide centre(guide, lum, c, centre_mask, whole);
         TapSums s{};
         for (int ky = -2; ky <= 2; ++ky) {
           const int yy = y + ky * step;
@@ -419,7 +432,7 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
             // Both flags as types, so each combination gets its own compiled loop body.
             auto add = [&](auto whole_chunk, auto first_order) {
               add_tap<decltype(whole_chunk)::value, decltype(first_order)::value>(
-                  in, lum, noise, guide, k, c, q, mask, kx, ky, base_r, base_g, base_b,
+                  in, lum, noise, guide, centre, k, q, mask, kx, ky, base_r, base_g, base_b,
                   centre_noise, counts, s);
             };
             using Yes = std::true_type;
