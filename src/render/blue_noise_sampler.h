@@ -76,7 +76,7 @@ class BlueNoiseSampler final : public Sampler {
   }
 
  private:
-  // start_pixel_sample but for the fallback's seeding.
+  // The keys of pixel (x, y): the tile shifted by the seed's offset.
   const PixelKeys& keys_at(uint32_t x, uint32_t y) const {
     return tables_->keys((x + offset_x_) % blue_noise::kTileSize,
                          (y + offset_y_) % blue_noise::kTileSize);
@@ -85,6 +85,7 @@ class BlueNoiseSampler final : public Sampler {
     __builtin_prefetch(keys);
     __builtin_prefetch(reinterpret_cast<const char*>(keys) + sizeof(PixelKeys) - 1);
   }
+  // start_pixel_sample but for the fallback's seeding.
   void start_tables(uint32_t x, uint32_t y, uint32_t index) {
     keys_ = &keys_at(x, y);
     index_ = index;

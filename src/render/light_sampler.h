@@ -66,8 +66,9 @@ class LightSampler {
   const Scene& scene_;
   const EnvironmentLight& environment_;
   std::vector<EmissiveTriangle> emissive_;
-  // The same lights as planes for sample8's gathers: entry j is selection bin j (triangles and
-  // point lights; the environment's bin has zeros). Radiance/intensity include light_scale.
+  // The same lights as planes for sample8's lookups (simd8_lookup.h; zero-padded to whole
+  // registers): entry j is selection bin j (triangles and point lights; the environment's bin
+  // has zeros). Radiance/intensity include light_scale.
   struct Planes {
     std::vector<float> px, py, pz;     // triangle p0 / point position
     std::vector<float> e1x, e1y, e1z;  // triangle edges (point lights: 0)

@@ -88,7 +88,8 @@ class PathIntegrator {
   void shade_misses(PathWave& wave, size_t begin, simd::M8 missed) const;
   void add_emission(PathWave& wave, size_t i, const Hit& hit) const;
 
-  // The materials as planes for shade8's gathers (index: material id).
+  // The materials as planes for shade8's lookups (index: material id; zero-padded to whole
+  // registers, simd8_lookup.h).
   struct MaterialPlanes {
     std::vector<int32_t> type;  // MaterialType
     std::vector<float> base_r, base_g, base_b, specular_r, specular_g, specular_b;

@@ -209,11 +209,11 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   const simd::I8 material = simd::I8::load(material_of);
   const MaterialPlanes& mp = material_planes_;
   const size_t materials = scene_.materials.size();
-  auto gather = [&](const std::vector<float>& plane) {
+  auto per_material = [&](const std::vector<float>& plane) {
     return simd::lookup(plane, materials, material);
   };
   const simd::I8 type = simd::lookup(mp.type, materials, material);
-  V8 base(gather(mp.base_r), gather(mp.base_g), gather(mp.base_b));
+  V8 base(per_material(mp.base_r), per_material(mp.base_g), per_material(mp.base_b));
   if (textured) {
     // resolve_bsdf's lookup: at the interpolated UV, or (0, 0) on a mesh without UVs.
     const LaneOut base_out(base);
@@ -243,7 +243,7 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   M8 is_mirror = lanes & (type == simd::I8(static_cast<int32_t>(MaterialType::kMirror)));
   const M8 is_dielectric =
       lanes & (type == simd::I8(static_cast<int32_t>(MaterialType::kDielectric)));
-  F8 alpha_x = gather(mp.alpha_x), alpha_y = gather(mp.alpha_y);
+  F8 alpha_x = per_material(mp.alpha_x), alpha_y = per_material(mp.alpha_y);
   if (settings_.quality.regularize) {
     // regularize(): a lobe no sharper than the roughest vertex before it; Lambert counts as
     // roughness 1, a mirror behind a rough vertex turns into a GGX conductor of that roughness.
@@ -269,7 +269,8 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   bsdf.glossy = is_glossy;
   bsdf.principled = is_principled;
   bsdf.base = base;
-  bsdf.specular = V8(gather(mp.specular_r), gather(mp.specular_g), gather(mp.specular_b));
+  bsdf.specular =
+      V8(per_material(mp.specular_r), per_material(mp.specular_g), per_material(mp.specular_b));
   // bsdf.cpp's clamp_alpha: anything not above the minimum (a NaN too) becomes the minimum.
   const F8 min_alpha(simd::kMinAlpha8);
   bsdf.ax = simd::select(alpha_x > min_alpha, alpha_x, min_alpha);

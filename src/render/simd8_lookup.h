@@ -1,8 +1,8 @@
 // Lane-wise lookups in the small tables of shading (a value per light, per material), eight
-// lanes at once. A table of at most 16 entries is read with register permutes: AVX2's gathers
-// are microcoded, one 8-lane gather costing about as much as eight scalar loads (measured on
-// AMD Zen 3; Intel cores are faster, still several times a permute), and most scenes have few
-// lights or materials. Larger tables are gathered.
+// lanes at once. A table of at most 16 entries is read with one or two register permutes
+// instead of an AVX2 gather, which is microcoded: on this project's AMD Zen 3 machine the
+// light sample spent half its time in its gathers (docs/bvh.md, twenty-third session), and
+// most scenes have few lights or materials. Larger tables are gathered.
 #pragma once
 
 #include <immintrin.h>
