@@ -66,16 +66,13 @@ class SamplerBankOf final : public SamplerBank {
     if (samplers_.size() < first + ids.size()) samplers_.resize(first + ids.size(), prototype_);
     size_t i = 0;
     // Samplers that read tables ask for a start's lines this many ids ahead.
-    if constexpr (requires(const S& s, uint32_t x) { s.prefetch_start(x, x); }) {
-      for (size_t j = 0; j < std::min(kPrefetchAhead, ids.size()); ++j)
-        prototype_.prefetch_start(ids[j].x, ids[j].y);
-    }
+    prefetch_starts(ids, 0, kPrefetchAhead);
     // Samplers that can seed four at once (their seeding is a chain of 64-bit multiplies).
     if constexpr (requires(S * s[4], const PixelSampleId* id, float* const* out, size_t at) {
                     S::start4(s, id, out, at);
                   }) {
       for (; i + 4 <= ids.size(); i += 4) {
-        prefetch_starts(ids, i + kPrefetchAhead);
+        prefetch_starts(ids, i + kPrefetchAhead, 4);
         S* s[4];
         for (int j = 0; j < 4; ++j) s[j] = &samplers_[first + i + j];
         S::start4(s, &ids[i], first4, i);
@@ -130,10 +127,10 @@ class SamplerBankOf final : public SamplerBank {
   [[gnu::always_inline]] void prefetch_next(uint32_t slot) const {
     if constexpr (requires(const S& s) { s.prefetch_next(); }) samplers_[slot].prefetch_next();
   }
-  [[gnu::always_inline]] void prefetch_starts(std::span<const PixelSampleId> ids,
-                                              size_t from) const {
+  [[gnu::always_inline]] void prefetch_starts(std::span<const PixelSampleId> ids, size_t from,
+                                              size_t count) const {
     if constexpr (requires(const S& s, uint32_t x) { s.prefetch_start(x, x); }) {
-      for (size_t j = from; j < std::min(ids.size(), from + 4); ++j)
+      for (size_t j = from; j < std::min(ids.size(), from + count); ++j)
         prototype_.prefetch_start(ids[j].x, ids[j].y);
     }
   }

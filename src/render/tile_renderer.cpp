@@ -307,8 +307,9 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
           for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
               size_t pixel = static_cast<size_t>(y) * settings_.width + x;
-              uint32_t first = work.first(static_cast<uint32_t>(x), static_cast<uint32_t>(y)),
-                       n = work.count(pixel);
+              const uint32_t n = work.count(pixel);
+              if (n == 0) continue;  // as in run_wavefront: the film is not read for it
+              const uint32_t first = work.first(static_cast<uint32_t>(x), static_cast<uint32_t>(y));
               for (uint32_t s = 0; s < n; ++s)
                 b.ids.push_back({static_cast<uint32_t>(x), static_cast<uint32_t>(y), first + s});
             }

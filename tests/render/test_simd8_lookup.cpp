@@ -27,8 +27,8 @@ TEST(Simd8Lookup, EveryTableSizeReadsTheIndexedEntries) {
     for (size_t start = 0; start < entries; ++start) {
       alignas(32) int32_t index[simd::kLanes];
       for (int lane = 0; lane < simd::kLanes; ++lane)
-        index[lane] = static_cast<int32_t>((start + static_cast<size_t>(lane) * (lane + 3)) %
-                                           entries);
+        index[lane] =
+            static_cast<int32_t>((start + static_cast<size_t>(lane) * (lane + 3)) % entries);
       const simd::I8 at = simd::I8::load(index);
       alignas(32) float got_float[simd::kLanes];
       alignas(32) int32_t got_int[simd::kLanes];
