@@ -41,13 +41,19 @@ float demodulator(float albedo) {
 // and the library exp would be most of the filter's time. log2(e^-x) + 127 is in [11, 127]:
 // positive, so truncation is the floor, and the integer part is the biased exponent of a
 // normal float.
+// The polynomial is evaluated in Estrin's scheme (pairs, then powers of f): it lies on every
+// tap's critical path, and this halves its chain of dependent multiplies.
 inline __m256 exp_neg8(__m256 x) {
   const __m256 t = _mm256_fnmadd_ps(x, _mm256_set1_ps(1.44269504f), _mm256_set1_ps(127.0f));
-  const __m256i i = _mm256_cvttps_epi32(t);
-  const __m256 f = _mm256_sub_ps(t, _mm256_cvtepi32_ps(i));
-  __m256 p = _mm256_set1_ps(1.33336e-3f);
-  for (float c : {0.00961813f, 0.0555041f, 0.240227f, 0.693147f, 1.0f})
-    p = _mm256_fmadd_ps(p, f, _mm256_set1_ps(c));
+  const __m256 whole = _mm256_round_ps(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+  const __m256 f = _mm256_sub_ps(t, whole);
+  const __m256i i = _mm256_cvttps_epi32(whole);
+  auto pair = [&](float c0, float c1) {
+    return _mm256_fmadd_ps(f, _mm256_set1_ps(c1), _mm256_set1_ps(c0));
+  };
+  const __m256 f2 = _mm256_mul_ps(f, f);
+  const __m256 low = _mm256_fmadd_ps(f2, pair(0.240227f, 0.0555041f), pair(1.0f, 0.693147f));
+  const __m256 p = _mm256_fmadd_ps(_mm256_mul_ps(f2, f2), pair(0.00961813f, 1.33336e-3f), low);
   return _mm256_mul_ps(p, _mm256_castsi256_ps(_mm256_slli_epi32(i, 23)));
 }
 
@@ -189,12 +195,48 @@ void blur_variance(const Layer& in, int w, int h, float scale, FloatPlane& out) 
   });
 }
 
-// A chunk's sums over its taps, eight pixels to a vector.
+// The sums over one row of a chunk's taps, eight pixels to a vector: values, weights and
+// variances, and the first-order moments along x (times the tap's offset in steps, and for the
+// weights and variances its square). The moments along y are the row sums times the row's
+// offset, added once per row (TapSums::add_row): fewer live accumulators in the tap loop.
+struct RowSums {
+  __m256 r, g, b, weight, variance, rx, gx, bx, wx, wxx, vx, vxx;
+};
+
+// A chunk's sums over all its taps.
 struct TapSums {
   __m256 r, g, b, weight, variance;
   // First-order moments: the same sums times the tap's offset (in steps) along x and y, and for
   // the weights and variances also times the offsets' products.
   __m256 rx, ry, gx, gy, bx, by, wx, wy, wxx, wyy, wxy, vx, vy, vxx, vyy, vxy;
+
+  void add_row(const RowSums& row, int ky, bool first_order) {
+    r = _mm256_add_ps(r, row.r);
+    g = _mm256_add_ps(g, row.g);
+    b = _mm256_add_ps(b, row.b);
+    weight = _mm256_add_ps(weight, row.weight);
+    variance = _mm256_add_ps(variance, row.variance);
+    if (!first_order) return;
+    rx = _mm256_add_ps(rx, row.rx);
+    gx = _mm256_add_ps(gx, row.gx);
+    bx = _mm256_add_ps(bx, row.bx);
+    wx = _mm256_add_ps(wx, row.wx);
+    wxx = _mm256_add_ps(wxx, row.wxx);
+    vx = _mm256_add_ps(vx, row.vx);
+    vxx = _mm256_add_ps(vxx, row.vxx);
+    if (ky == 0) return;
+    const __m256 d = _mm256_set1_ps(static_cast<float>(ky));
+    const __m256 dd = _mm256_set1_ps(static_cast<float>(ky * ky));
+    ry = _mm256_fmadd_ps(row.r, d, ry);
+    gy = _mm256_fmadd_ps(row.g, d, gy);
+    by = _mm256_fmadd_ps(row.b, d, by);
+    wy = _mm256_fmadd_ps(row.weight, d, wy);
+    wyy = _mm256_fmadd_ps(row.weight, dd, wyy);
+    vy = _mm256_fmadd_ps(row.variance, d, vy);
+    vyy = _mm256_fmadd_ps(row.variance, dd, vyy);
+    wxy = _mm256_fmadd_ps(row.wx, d, wxy);
+    vxy = _mm256_fmadd_ps(row.vx, d, vxy);
+  }
 };
 
 // The filter's per-step constants.
@@ -220,35 +262,58 @@ inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask, bool full) {
   return full ? load8<true>(v, i, mask) : load8<false>(v, i, mask);
 }
 
+inline void store8(FloatPlane& v, ptrdiff_t i, __m256i mask, bool full, __m256 value) {
+  if (full)
+    _mm256_storeu_ps(v.data() + i, value);
+  else
+    _mm256_maskstore_ps(v.data() + i, mask, value);
+}
+
+// v^(2^n). The default's squarings are unrolled: a counted loop around one multiply costs as
+// much again in loop instructions, and this sits on every tap's critical path.
+inline __m256 repeated_squares(__m256 v, int n) {
+  constexpr int kDefault = DenoiseParams{}.normal_squarings;
+  if (n == kDefault) {
+#pragma GCC unroll 8
+    for (int i = 0; i < kDefault; ++i) v = _mm256_mul_ps(v, v);
+    return v;
+  }
+  for (int i = 0; i < n; ++i) v = _mm256_mul_ps(v, v);
+  return v;
+}
+
 // The chunk's own guide values, loaded once for its 25 taps (lanes past the row's end read 0;
-// a tap's lanes outside its mask weigh 0 whatever the centre holds there).
+// a tap's lanes outside its mask weigh 0 whatever the centre holds there). The spreads are the
+// centre's share of the visibility and luminance spreads with their constant terms added.
 struct CentreGuide {
-  __m256 nx, ny, nz, ar, ag, ab, px, py, pz, vis, vis_noise, lum;
-  CentreGuide(const GuidePlanes& g, const FloatPlane& luminance, ptrdiff_t c, __m256i mask,
-              bool whole) {
+  __m256 nx, ny, nz, ar, ag, ab, px, py, pz, vis, vis_spread, lum, spread;
+  CentreGuide(const GuidePlanes& g, const FloatPlane& luminance, const FloatPlane& noise,
+              float visibility_sigma2, ptrdiff_t c, __m256i mask, bool whole) {
     auto at = [&](const FloatPlane& v) { return load8(v, c, mask, whole); };
     nx = at(g.nx), ny = at(g.ny), nz = at(g.nz);
     ar = at(g.ar), ag = at(g.ag), ab = at(g.ab);
     px = at(g.px), py = at(g.py), pz = at(g.pz);
-    vis = at(g.vis), vis_noise = at(g.vis_noise), lum = at(luminance);
+    vis = at(g.vis), lum = at(luminance);
+    vis_spread = _mm256_add_ps(at(g.vis_noise), _mm256_set1_ps(visibility_sigma2));
+    spread = _mm256_add_ps(at(noise), _mm256_set1_ps(kTinyNoise));
   }
 };
 
 // Adds the tap at offset (kx, ky) steps, pixel index `q` for the chunk's first lane, to the
-// sums of the eight pixels from index `c` on. `mask` marks lanes whose pixel and tap exist.
+// row sums of the eight pixels from index `c` on. `mask` marks lanes whose pixel and tap exist.
 // The whole chunk's taps inside the image (kFull) and the first-order sums are known when the
 // loop is compiled, so the hot path has neither masks nor branches.
 template <bool kFull, bool kFirstOrder>
 inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& noise,
                     const GuidePlanes& guide, const CentreGuide& centre, const StepConstants& k,
                     ptrdiff_t q, __m256i mask, int kx, int ky, __m256 base_r, __m256 base_g,
-                    __m256 base_b, __m256 centre_noise, __m256 counts, TapSums& s) {
+                    __m256 base_b, __m256 counts, RowSums& s) {
   auto tap = [&](const FloatPlane& v) { return load8<kFull>(v, q, mask); };
   const __m256 zero = _mm256_setzero_ps();
   __m256 wn = _mm256_mul_ps(centre.nx, tap(guide.nx));
   wn = _mm256_fmadd_ps(centre.ny, tap(guide.ny), wn);
   wn = _mm256_max_ps(_mm256_fmadd_ps(centre.nz, tap(guide.nz), wn), zero);
-  for (int i = 0; i < k.normal_squarings; ++i) wn = _mm256_mul_ps(wn, wn);
+  wn = repeated_squares(wn, k.normal_squarings);
   const __m256 dr = _mm256_sub_ps(centre.ar, tap(guide.ar));
   const __m256 dg = _mm256_sub_ps(centre.ag, tap(guide.ag));
   const __m256 db = _mm256_sub_ps(centre.ab, tap(guide.ab));
@@ -268,13 +333,11 @@ inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& no
       _mm256_mul_ps(_mm256_mul_ps(off_plane, off_plane),
                     _mm256_rcp_ps(_mm256_mul_ps(chord, _mm256_set1_ps(k.plane_sigma2))));
   const __m256 dv = _mm256_sub_ps(centre.vis, tap(guide.vis));
-  const __m256 vis_spread = _mm256_add_ps(_mm256_add_ps(centre.vis_noise, tap(guide.vis_noise)),
-                                          _mm256_set1_ps(k.visibility_sigma2));
+  const __m256 vis_spread = _mm256_add_ps(centre.vis_spread, tap(guide.vis_noise));
   const __m256 visibility = _mm256_mul_ps(_mm256_mul_ps(dv, dv), _mm256_rcp_ps(vis_spread));
   const __m256 dl = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), _mm256_sub_ps(centre.lum, tap(lum)));
-  const __m256 spread =
-      _mm256_add_ps(_mm256_add_ps(centre_noise, tap(noise)), _mm256_set1_ps(kTinyNoise));
-  const __m256 luminance = _mm256_mul_ps(_mm256_mul_ps(dl, _mm256_rsqrt_ps(spread)), counts);
+  const __m256 spread = _mm256_add_ps(centre.spread, tap(noise));
+  const __m256 luminance = _mm256_mul_ps(_mm256_mul_ps(dl, counts), _mm256_rsqrt_ps(spread));
   // min() also turns NaN (inf - inf) into the largest exponent: it returns its second operand.
   const __m256 exponent = _mm256_min_ps(
       _mm256_add_ps(_mm256_add_ps(luminance, albedo), _mm256_add_ps(visibility, plane)),
@@ -292,98 +355,78 @@ inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& no
   s.weight = _mm256_add_ps(s.weight, wq);
   s.variance = _mm256_add_ps(s.variance, vq);
   if constexpr (!kFirstOrder) return;
-  auto moment = [](__m256& sum, __m256 v, float d) {
-    sum = _mm256_fmadd_ps(v, _mm256_set1_ps(d), sum);
-  };
-  // One axis's moments, offset d along it.
-  auto along = [&](float d, __m256& r, __m256& g, __m256& b, __m256& w, __m256& ww, __m256& v,
-                   __m256& vv) {
-    moment(r, cr, d);
-    moment(g, cg, d);
-    moment(b, cb, d);
-    moment(w, wq, d);
-    moment(ww, wq, d * d);
-    moment(v, vq, d);
-    moment(vv, vq, d * d);
-  };
-  const float fx = static_cast<float>(kx), fy = static_cast<float>(ky);
-  if (kx != 0) along(fx, s.rx, s.gx, s.bx, s.wx, s.wxx, s.vx, s.vxx);
-  if (ky != 0) along(fy, s.ry, s.gy, s.by, s.wy, s.wyy, s.vy, s.vyy);
-  if (kx != 0 && ky != 0) {
-    moment(s.wxy, wq, fx * fy);
-    moment(s.vxy, vq, fx * fy);
-  }
+  if (kx == 0) return;
+  const __m256 d = _mm256_set1_ps(static_cast<float>(kx));
+  const __m256 dd = _mm256_set1_ps(static_cast<float>(kx * kx));
+  s.rx = _mm256_fmadd_ps(cr, d, s.rx);
+  s.gx = _mm256_fmadd_ps(cg, d, s.gx);
+  s.bx = _mm256_fmadd_ps(cb, d, s.bx);
+  s.wx = _mm256_fmadd_ps(wq, d, s.wx);
+  s.wxx = _mm256_fmadd_ps(wq, dd, s.wxx);
+  s.vx = _mm256_fmadd_ps(vq, d, s.vx);
+  s.vxx = _mm256_fmadd_ps(vq, dd, s.vxx);
 }
 
-// One pixel's result from its sums (lane `i` of the chunk's vectors, spilled to arrays).
-struct LaneSums {
-  alignas(32) float r[8], g[8], b[8], weight[8], variance[8], rx[8], ry[8], gx[8], gy[8], bx[8],
-      by[8], wx[8], wy[8], wxx[8], wyy[8], wxy[8], vx[8], vy[8], vxx[8], vyy[8], vxy[8];
-  explicit LaneSums(const TapSums& s) {
-    _mm256_store_ps(r, s.r);
-    _mm256_store_ps(g, s.g);
-    _mm256_store_ps(b, s.b);
-    _mm256_store_ps(weight, s.weight);
-    _mm256_store_ps(variance, s.variance);
-    _mm256_store_ps(rx, s.rx);
-    _mm256_store_ps(ry, s.ry);
-    _mm256_store_ps(gx, s.gx);
-    _mm256_store_ps(gy, s.gy);
-    _mm256_store_ps(bx, s.bx);
-    _mm256_store_ps(by, s.by);
-    _mm256_store_ps(wx, s.wx);
-    _mm256_store_ps(wy, s.wy);
-    _mm256_store_ps(wxx, s.wxx);
-    _mm256_store_ps(wyy, s.wyy);
-    _mm256_store_ps(wxy, s.wxy);
-    _mm256_store_ps(vx, s.vx);
-    _mm256_store_ps(vy, s.vy);
-    _mm256_store_ps(vxx, s.vxx);
-    _mm256_store_ps(vyy, s.vyy);
-    _mm256_store_ps(vxy, s.vxy);
-  }
-};
-
-// The estimate's weights per tap are l_q = w_q (e0 + e1 dx + e2 dy): the weighted mean has
-// e = (1/W, 0, 0); the first-order fit the plane's value at the centre.
+// The estimate's weights per tap are l_q = w_q (e0 + e1 dx + e2 dy), eight pixels to a vector:
+// the weighted mean has e = (1/W, 0, 0); the first-order fit the plane's value at the centre.
 struct Coefficients {
-  float e0, e1, e2;
+  __m256 e0, e1, e2;
 };
 
 // The variance of sum of l_q value_q: sum of w_q^2 var_q (e0 + e1 dx + e2 dy)^2.
-float variance_of(const LaneSums& s, int i, const Coefficients& e) {
-  return e.e0 * e.e0 * s.variance[i] + e.e1 * e.e1 * s.vxx[i] + e.e2 * e.e2 * s.vyy[i] +
-         2 * (e.e0 * e.e1 * s.vx[i] + e.e0 * e.e2 * s.vy[i] + e.e1 * e.e2 * s.vxy[i]);
+inline __m256 variance_of(const TapSums& s, const Coefficients& e) {
+  __m256 square = _mm256_mul_ps(_mm256_mul_ps(e.e0, e.e0), s.variance);
+  square = _mm256_fmadd_ps(_mm256_mul_ps(e.e1, e.e1), s.vxx, square);
+  square = _mm256_fmadd_ps(_mm256_mul_ps(e.e2, e.e2), s.vyy, square);
+  __m256 cross = _mm256_mul_ps(_mm256_mul_ps(e.e0, e.e1), s.vx);
+  cross = _mm256_fmadd_ps(_mm256_mul_ps(e.e0, e.e2), s.vy, cross);
+  cross = _mm256_fmadd_ps(_mm256_mul_ps(e.e1, e.e2), s.vxy, cross);
+  return _mm256_fmadd_ps(_mm256_set1_ps(2.0f), cross, square);
 }
 
-Coefficients fit(const LaneSums& s, int i, const DenoiseParams& params) {
-  const float weight = s.weight[i];
-  Coefficients e{1.0f / weight, 0.0f, 0.0f};
-  if (!params.first_order) return e;
+// Lanes whose weight is 0 come out as inf or NaN: the caller keeps their input.
+Coefficients fit(const TapSums& s, const DenoiseParams& params) {
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+  const __m256 e0 = _mm256_div_ps(one, s.weight);
+  if (!params.first_order) return {e0, zero, zero};
   // The plane through the taps' weighted centroid m with the fitted slope, at the centre:
   // mean - slope . m, the slope solving C slope = sum of w (o - m) value over offsets o, C their
   // weighted covariance (ridged). So e = (1/W + u . m, -u) with u = C^-1 m.
-  const float mx = s.wx[i] * e.e0, my = s.wy[i] * e.e0;
-  const float ridge = params.slope_ridge * weight;
-  const float cxx = s.wxx[i] - s.wx[i] * mx + ridge, cyy = s.wyy[i] - s.wy[i] * my + ridge;
-  const float cxy = s.wxy[i] - s.wx[i] * my;
-  const float det = cxx * cyy - cxy * cxy;
-  if (!(det > 0)) return e;
-  const float ux = (cyy * mx - cxy * my) / det, uy = (cxx * my - cxy * mx) / det;
-  const float a = ux * mx + uy * my;  // e0 - 1/W
-  Coefficients first{e.e0 + a, -ux, -uy};
+  const __m256 mx = _mm256_mul_ps(s.wx, e0), my = _mm256_mul_ps(s.wy, e0);
+  const __m256 ridge = _mm256_mul_ps(_mm256_set1_ps(params.slope_ridge), s.weight);
+  const __m256 cxx = _mm256_add_ps(_mm256_fnmadd_ps(s.wx, mx, s.wxx), ridge);
+  const __m256 cyy = _mm256_add_ps(_mm256_fnmadd_ps(s.wy, my, s.wyy), ridge);
+  const __m256 cxy = _mm256_fnmadd_ps(s.wx, my, s.wxy);
+  const __m256 det = _mm256_fmsub_ps(cxx, cyy, _mm256_mul_ps(cxy, cxy));
+  // Where the covariance is singular the slope is 0 (and-ing also clears the NaNs of 0/0).
+  const __m256 solvable = _mm256_cmp_ps(det, zero, _CMP_GT_OQ);
+  const __m256 inverse_det = _mm256_div_ps(one, det);
+  const __m256 ux = _mm256_and_ps(
+      _mm256_mul_ps(_mm256_fmsub_ps(cyy, mx, _mm256_mul_ps(cxy, my)), inverse_det), solvable);
+  const __m256 uy = _mm256_and_ps(
+      _mm256_mul_ps(_mm256_fmsub_ps(cxx, my, _mm256_mul_ps(cxy, mx)), inverse_det), solvable);
+  const __m256 a = _mm256_fmadd_ps(ux, mx, _mm256_mul_ps(uy, my));  // e0 - 1/W
+  const Coefficients first{_mm256_add_ps(e0, a), _mm256_sub_ps(zero, ux), _mm256_sub_ps(zero, uy)};
   if (params.first_order_shrinkage <= 0) return first;
   // The correction over the mean, d = sum of w (a + e1 dx + e2 dy) value, is kept in the share
   // d^2 / (d^2 + k var(d)): where the slope is lost in the noise the mean is the better
   // estimate.
-  const float dr = a * s.r[i] + first.e1 * s.rx[i] + first.e2 * s.ry[i];
-  const float dg = a * s.g[i] + first.e1 * s.gx[i] + first.e2 * s.gy[i];
-  const float db = a * s.b[i] + first.e1 * s.bx[i] + first.e2 * s.by[i];
-  const float d2 = (dr * dr + dg * dg + db * db) / 3.0f;
-  const float var_d = std::max(0.0f, variance_of(s, i, {a, first.e1, first.e2}));
-  const float denominator = d2 + params.first_order_shrinkage * var_d;
-  const float t = denominator > 0 ? d2 / denominator : 0.0f;
-  return {e.e0 + t * a, t * first.e1, t * first.e2};
+  auto correction = [&](__m256 v, __m256 vx, __m256 vy) {
+    return _mm256_fmadd_ps(a, v, _mm256_fmadd_ps(first.e1, vx, _mm256_mul_ps(first.e2, vy)));
+  };
+  const __m256 dr = correction(s.r, s.rx, s.ry);
+  const __m256 dg = correction(s.g, s.gx, s.gy);
+  const __m256 db = correction(s.b, s.bx, s.by);
+  const __m256 d2 =
+      _mm256_mul_ps(_mm256_fmadd_ps(dr, dr, _mm256_fmadd_ps(dg, dg, _mm256_mul_ps(db, db))),
+                    _mm256_set1_ps(1.0f / 3.0f));
+  // max() with 0 second also turns a NaN variance into 0.
+  const __m256 var_d = _mm256_max_ps(variance_of(s, {a, first.e1, first.e2}), zero);
+  const __m256 denominator =
+      _mm256_fmadd_ps(_mm256_set1_ps(params.first_order_shrinkage), var_d, d2);
+  const __m256 t =
+      _mm256_and_ps(_mm256_div_ps(d2, denominator), _mm256_cmp_ps(denominator, zero, _CMP_GT_OQ));
+  return {_mm256_fmadd_ps(t, a, e0), _mm256_mul_ps(t, first.e1), _mm256_mul_ps(t, first.e2)};
 }
 
 void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const FloatPlane& noise,
@@ -406,21 +449,23 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
         const ptrdiff_t c = row + x0;
         const __m256i centre_mask = lanes_between(0, lanes);
         const bool whole = lanes == 8;
+        auto at_centre = [&](const FloatPlane& v) { return load8(v, c, centre_mask, whole); };
         // Differences are taken from the centre, so a constant neighbourhood stays exactly
         // constant; a pixel without a value takes its neighbours' weighted mean, and its
         // luminance means nothing.
-        const __m256 has =
-            _mm256_cmp_ps(load8(in.valid, c, centre_mask, whole), _mm256_setzero_ps(), _CMP_GT_OQ);
+        const __m256 valid = at_centre(in.valid);
+        const __m256 has = _mm256_cmp_ps(valid, _mm256_setzero_ps(), _CMP_GT_OQ);
         const __m256 counts = _mm256_and_ps(has, _mm256_set1_ps(1.0f));
-        const __m256 base_r = _mm256_and_ps(load8(in.r, c, centre_mask, whole), has);
-        const __m256 base_g = _mm256_and_ps(load8(in.g, c, centre_mask, whole), has);
-        const __m256 base_b = _mm256_and_ps(load8(in.b, c, centre_mask, whole), has);
-        const __m256 centre_noise = load8(noise, c, centre_mask, whole);
-        const CentreGuide centre(guide, lum, c, centre_mask, whole);
+        const __m256 r = at_centre(in.r), g = at_centre(in.g), b = at_centre(in.b);
+        const __m256 base_r = _mm256_and_ps(r, has);
+        const __m256 base_g = _mm256_and_ps(g, has);
+        const __m256 base_b = _mm256_and_ps(b, has);
+        const CentreGuide centre(guide, lum, noise, k.visibility_sigma2, c, centre_mask, whole);
         TapSums s{};
         for (int ky = -2; ky <= 2; ++ky) {
           const int yy = y + ky * step;
           if (yy < 0 || yy >= h) continue;
+          RowSums row_sums{};
           for (int kx = -2; kx <= 2; ++kx) {
             const int off = kx * step;
             // Lanes whose tap lies inside the row.
@@ -432,8 +477,8 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
             // Both flags as types, so each combination gets its own compiled loop body.
             auto add = [&](auto whole_chunk, auto first_order) {
               add_tap<decltype(whole_chunk)::value, decltype(first_order)::value>(
-                  in, lum, noise, guide, centre, k, q, mask, kx, ky, base_r, base_g, base_b,
-                  centre_noise, counts, s);
+                  in, lum, noise, guide, centre, k, q, mask, kx, ky, base_r, base_g, base_b, counts,
+                  row_sums);
             };
             using Yes = std::true_type;
             using No = std::false_type;
@@ -442,29 +487,25 @@ void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const Float
             else
               k.first_order ? add(No{}, Yes{}) : add(No{}, No{});
           }
+          s.add_row(row_sums, ky, k.first_order);
         }
-        const LaneSums sums(s);
-        for (int i = 0; i < lanes; ++i) {
-          const ptrdiff_t p = c + i;
-          const float weight = sums.weight[i];
-          if (weight > 0) {
-            const Coefficients e = fit(sums, i, params);
-            const float br = in.valid[p] > 0 ? in.r[p] : 0.0f;
-            const float bg = in.valid[p] > 0 ? in.g[p] : 0.0f;
-            const float bb = in.valid[p] > 0 ? in.b[p] : 0.0f;
-            out.r[p] = br + e.e0 * sums.r[i] + e.e1 * sums.rx[i] + e.e2 * sums.ry[i];
-            out.g[p] = bg + e.e0 * sums.g[i] + e.e1 * sums.gx[i] + e.e2 * sums.gy[i];
-            out.b[p] = bb + e.e0 * sums.b[i] + e.e1 * sums.bx[i] + e.e2 * sums.by[i];
-            out.variance[p] = std::max(0.0f, variance_of(sums, i, e));
-            out.valid[p] = 1;
-          } else {
-            out.r[p] = in.r[p];
-            out.g[p] = in.g[p];
-            out.b[p] = in.b[p];
-            out.variance[p] = in.variance[p];
-            out.valid[p] = in.valid[p];
-          }
-        }
+        // Pixels whose taps all weigh 0 keep their input.
+        const __m256 filtered = _mm256_cmp_ps(s.weight, _mm256_setzero_ps(), _CMP_GT_OQ);
+        const Coefficients e = fit(s, params);
+        auto estimate = [&](__m256 base, __m256 sum, __m256 sum_x, __m256 sum_y) {
+          return _mm256_add_ps(
+              base,
+              _mm256_fmadd_ps(e.e0, sum, _mm256_fmadd_ps(e.e1, sum_x, _mm256_mul_ps(e.e2, sum_y))));
+        };
+        auto put = [&](FloatPlane& plane, __m256 kept, __m256 value) {
+          store8(plane, c, centre_mask, whole, _mm256_blendv_ps(kept, value, filtered));
+        };
+        put(out.r, r, estimate(base_r, s.r, s.rx, s.ry));
+        put(out.g, g, estimate(base_g, s.g, s.gx, s.gy));
+        put(out.b, b, estimate(base_b, s.b, s.bx, s.by));
+        put(out.variance, at_centre(in.variance),
+            _mm256_max_ps(variance_of(s, e), _mm256_setzero_ps()));
+        put(out.valid, valid, _mm256_set1_ps(1.0f));
       }
     }
   });
