@@ -51,6 +51,22 @@ void BM_DenoiseFilter(benchmark::State& state) {
 }
 BENCHMARK(BM_DenoiseFilter)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// A frame's filtering when the view's guide weights are kept (FrameResolver), and computing
+// them (once per view).
+void BM_DenoiseFilterSharedGuides(benchmark::State& state) {
+  NoisyImage in = noisy_image(noisy_film());
+  DenoiseFeatures f = grid_features();
+  const GuideWeights guides(f, DenoiseParams{});
+  for (auto _ : state) benchmark::DoNotOptimize(denoise(in, f, {}, &guides));
+}
+BENCHMARK(BM_DenoiseFilterSharedGuides)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DenoiseGuideWeights(benchmark::State& state) {
+  DenoiseFeatures f = grid_features();
+  for (auto _ : state) benchmark::DoNotOptimize(GuideWeights(f, DenoiseParams{}));
+}
+BENCHMARK(BM_DenoiseGuideWeights)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The same with each iteration taking its taps' weighted mean instead of a first-order fit.
 void BM_DenoiseFilterZeroOrder(benchmark::State& state) {
   NoisyImage in = noisy_image(noisy_film());

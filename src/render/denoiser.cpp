@@ -1,66 +1,30 @@
 #include "render/denoiser.h"
 
-#include "render/staggered_allocator.h"
-
 #include <immintrin.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
+#include "render/denoiser_kernel.h"
+#include "render/staggered_allocator.h"
+
 namespace tuneray {
+
+using namespace denoise_detail;
 
 namespace {
 
-// The B3-spline kernel (1, 4, 6, 4, 1) / 16 by distance from the centre.
-constexpr float kB3[3] = {3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f};
 // Albedo below this is treated as this when dividing, so black surfaces do not blow up noise.
 constexpr float kMinAlbedo = 0.01f;
-// Exponents beyond this give weights below 1e-34: zero for our purposes.
-constexpr float kMaxExponent = 80.0f;
-// Taps 2^15 pixels apart reach beyond any image we render.
-constexpr int kMostIterations = 16;
-// Added to the noise variance: without noise only an (almost) equal luminance passes.
-constexpr float kTinyNoise = 1e-20f;
-// Added to a tap's squared distance from the centre's point, so a tap at the same point (the
-// centre itself) lies on its plane, not at 0/0.
-constexpr float kTinyChord = 1e-30f;
 
 float demodulator(float albedo) {
   return 1.0f / std::max(albedo, kMinAlbedo);
-}
-
-// e^-x for x in [0, kMaxExponent] on eight lanes, to ~2e-4 relative: 2^(integer part) from
-// the exponent bits times a polynomial for 2^(fraction). A weight needs no more precision,
-// and the library exp would be most of the filter's time. log2(e^-x) + 127 is in [11, 127]:
-// positive, so truncation is the floor, and the integer part is the biased exponent of a
-// normal float.
-// The polynomial is evaluated in Estrin's scheme (pairs, then powers of f): it lies on every
-// tap's critical path, and this halves its chain of dependent multiplies.
-inline __m256 exp_neg8(__m256 x) {
-  const __m256 t = _mm256_fnmadd_ps(x, _mm256_set1_ps(1.44269504f), _mm256_set1_ps(127.0f));
-  const __m256 whole = _mm256_round_ps(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-  const __m256 f = _mm256_sub_ps(t, whole);
-  const __m256i i = _mm256_cvttps_epi32(whole);
-  auto pair = [&](float c0, float c1) {
-    return _mm256_fmadd_ps(f, _mm256_set1_ps(c1), _mm256_set1_ps(c0));
-  };
-  const __m256 f2 = _mm256_mul_ps(f, f);
-  const __m256 low = _mm256_fmadd_ps(f2, pair(0.240227f, 0.0555041f), pair(1.0f, 0.693147f));
-  const __m256 p = _mm256_fmadd_ps(_mm256_mul_ps(f2, f2), pair(0.00961813f, 1.33336e-3f), low);
-  return _mm256_mul_ps(p, _mm256_castsi256_ps(_mm256_slli_epi32(i, 23)));
-}
-
-template <class F>
-void for_rows(int height, F&& rows) {
-  tbb::parallel_for(tbb::blocked_range<int>(0, height),
-                    [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
 }
 
 // Unknown variances (pixels with one sample): the spread of the 3x3 neighbourhood's
@@ -107,44 +71,6 @@ std::vector<uint8_t> near_emitters(const DenoiseFeatures& f) {
     }
   return kept;
 }
-
-// The guides as planes of floats (the tap loop reads them with unit stride).
-struct GuidePlanes {
-  FloatPlane nx, ny, nz, ar, ag, ab;
-  // Position; 0 everywhere without the guide (every tap then lies on the centre's plane).
-  FloatPlane px, py, pz;
-  // Visibility, and its noise (deviations^2 x variance); 1 and 0 without the guide.
-  FloatPlane vis, vis_noise;
-  GuidePlanes(const DenoiseFeatures& f, const DenoiseParams& params) {
-    for (const Vec3f& n : f.normal) {
-      nx.push_back(n.x);
-      ny.push_back(n.y);
-      nz.push_back(n.z);
-    }
-    for (const Color& a : f.albedo) {
-      ar.push_back(a.x);
-      ag.push_back(a.y);
-      ab.push_back(a.z);
-    }
-    const size_t pixels = f.albedo.size();
-    px.assign(pixels, 0.0f);
-    py.assign(pixels, 0.0f);
-    pz.assign(pixels, 0.0f);
-    for (size_t p = 0; p < f.position.size(); ++p) {
-      px[p] = f.position[p].x;
-      py[p] = f.position[p].y;
-      pz[p] = f.position[p].z;
-    }
-    const float k2 = params.visibility_noise_deviations * params.visibility_noise_deviations;
-    vis.assign(pixels, 1.0f);
-    vis_noise.assign(pixels, 0.0f);
-    if (f.visibility.empty()) return;
-    for (size_t p = 0; p < pixels; ++p) {
-      vis[p] = f.visibility[p];
-      vis_noise[p] = k2 * f.visibility_variance[p];
-    }
-  }
-};
 
 // One iteration's state: light at the surface (the image divided by the albedo), its
 // variance, and which pixels have a value (1 or 0).
@@ -239,112 +165,24 @@ struct TapSums {
   }
 };
 
-// The filter's per-step constants.
-struct StepConstants {
-  float inv_albedo_sigma2, visibility_sigma2, plane_sigma2;
-  int normal_squarings;
-  bool first_order;
-};
-
-// Plane `v` at pixels [i, i + 8) where `mask` is set, 0 elsewhere (never read there); kFull:
-// every lane is set.
-template <bool kFull>
-inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask) {
-  if constexpr (kFull) {
-    return _mm256_loadu_ps(v.data() + i);
-  } else {
-    // Lanes outside the mask may lie before the plane or past it; maskload does not touch them.
-    return _mm256_maskload_ps(v.data() + i, mask);
-  }
-}
-
-inline __m256 load8(const FloatPlane& v, ptrdiff_t i, __m256i mask, bool full) {
-  return full ? load8<true>(v, i, mask) : load8<false>(v, i, mask);
-}
-
-inline void store8(FloatPlane& v, ptrdiff_t i, __m256i mask, bool full, __m256 value) {
-  if (full)
-    _mm256_storeu_ps(v.data() + i, value);
-  else
-    _mm256_maskstore_ps(v.data() + i, mask, value);
-}
-
-// v^(2^n). The default's squarings are unrolled: a counted loop around one multiply costs as
-// much again in loop instructions, and this sits on every tap's critical path.
-inline __m256 repeated_squares(__m256 v, int n) {
-  constexpr int kDefault = DenoiseParams{}.normal_squarings;
-  if (n == kDefault) {
-#pragma GCC unroll 8
-    for (int i = 0; i < kDefault; ++i) v = _mm256_mul_ps(v, v);
-    return v;
-  }
-  for (int i = 0; i < n; ++i) v = _mm256_mul_ps(v, v);
-  return v;
-}
-
-// The chunk's own guide values, loaded once for its 25 taps (lanes past the row's end read 0;
-// a tap's lanes outside its mask weigh 0 whatever the centre holds there). The spreads are the
-// centre's share of the visibility and luminance spreads with their constant terms added.
-struct CentreGuide {
-  __m256 nx, ny, nz, ar, ag, ab, px, py, pz, vis, vis_spread, lum, spread;
-  CentreGuide(const GuidePlanes& g, const FloatPlane& luminance, const FloatPlane& noise,
-              float visibility_sigma2, ptrdiff_t c, __m256i mask, bool whole) {
-    auto at = [&](const FloatPlane& v) { return load8(v, c, mask, whole); };
-    nx = at(g.nx), ny = at(g.ny), nz = at(g.nz);
-    ar = at(g.ar), ag = at(g.ag), ab = at(g.ab);
-    px = at(g.px), py = at(g.py), pz = at(g.pz);
-    vis = at(g.vis), lum = at(luminance);
-    vis_spread = _mm256_add_ps(at(g.vis_noise), _mm256_set1_ps(visibility_sigma2));
-    spread = _mm256_add_ps(at(noise), _mm256_set1_ps(kTinyNoise));
-  }
-};
-
 // Adds the tap at offset (kx, ky) steps, pixel index `q` for the chunk's first lane, to the
-// row sums of the eight pixels from index `c` on. `mask` marks lanes whose pixel and tap exist.
-// The whole chunk's taps inside the image (kFull) and the first-order sums are known when the
-// loop is compiled, so the hot path has neither masks nor branches.
+// row sums of the eight pixels from index `c` on: its guides' weight `guide` times the
+// luminance weight. `mask` marks lanes whose pixel and tap exist. The whole chunk's taps inside
+// the image (kFull) and the first-order sums are known when the loop is compiled, so the hot
+// path has neither masks nor branches.
 template <bool kFull, bool kFirstOrder>
 inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& noise,
-                    const GuidePlanes& guide, const CentreGuide& centre, const StepConstants& k,
-                    ptrdiff_t q, __m256i mask, int kx, int ky, __m256 base_r, __m256 base_g,
-                    __m256 base_b, __m256 counts, RowSums& s) {
+                    __m256 centre_lum, __m256 centre_spread, __m256 guide, ptrdiff_t q,
+                    __m256i mask, int kx, __m256 base_r, __m256 base_g, __m256 base_b,
+                    __m256 counts, RowSums& s) {
   auto tap = [&](const FloatPlane& v) { return load8<kFull>(v, q, mask); };
-  const __m256 zero = _mm256_setzero_ps();
-  __m256 wn = _mm256_mul_ps(centre.nx, tap(guide.nx));
-  wn = _mm256_fmadd_ps(centre.ny, tap(guide.ny), wn);
-  wn = _mm256_max_ps(_mm256_fmadd_ps(centre.nz, tap(guide.nz), wn), zero);
-  wn = repeated_squares(wn, k.normal_squarings);
-  const __m256 dr = _mm256_sub_ps(centre.ar, tap(guide.ar));
-  const __m256 dg = _mm256_sub_ps(centre.ag, tap(guide.ag));
-  const __m256 db = _mm256_sub_ps(centre.ab, tap(guide.ab));
-  __m256 albedo = _mm256_mul_ps(dr, dr);
-  albedo = _mm256_fmadd_ps(dg, dg, albedo);
-  albedo = _mm256_mul_ps(_mm256_fmadd_ps(db, db, albedo), _mm256_set1_ps(k.inv_albedo_sigma2));
-  const __m256 ex = _mm256_sub_ps(tap(guide.px), centre.px);
-  const __m256 ey = _mm256_sub_ps(tap(guide.py), centre.py);
-  const __m256 ez = _mm256_sub_ps(tap(guide.pz), centre.pz);
-  __m256 off_plane = _mm256_mul_ps(centre.nx, ex);
-  off_plane = _mm256_fmadd_ps(centre.ny, ey, off_plane);
-  off_plane = _mm256_fmadd_ps(centre.nz, ez, off_plane);
-  __m256 chord = _mm256_fmadd_ps(ex, ex, _mm256_set1_ps(kTinyChord));
-  chord = _mm256_fmadd_ps(ey, ey, chord);
-  chord = _mm256_fmadd_ps(ez, ez, chord);
-  const __m256 plane =
-      _mm256_mul_ps(_mm256_mul_ps(off_plane, off_plane),
-                    _mm256_rcp_ps(_mm256_mul_ps(chord, _mm256_set1_ps(k.plane_sigma2))));
-  const __m256 dv = _mm256_sub_ps(centre.vis, tap(guide.vis));
-  const __m256 vis_spread = _mm256_add_ps(centre.vis_spread, tap(guide.vis_noise));
-  const __m256 visibility = _mm256_mul_ps(_mm256_mul_ps(dv, dv), _mm256_rcp_ps(vis_spread));
-  const __m256 dl = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), _mm256_sub_ps(centre.lum, tap(lum)));
-  const __m256 spread = _mm256_add_ps(centre.spread, tap(noise));
-  const __m256 luminance = _mm256_mul_ps(_mm256_mul_ps(dl, counts), _mm256_rsqrt_ps(spread));
+  const __m256 dl = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), _mm256_sub_ps(centre_lum, tap(lum)));
+  const __m256 spread = _mm256_add_ps(centre_spread, tap(noise));
   // min() also turns NaN (inf - inf) into the largest exponent: it returns its second operand.
-  const __m256 exponent = _mm256_min_ps(
-      _mm256_add_ps(_mm256_add_ps(luminance, albedo), _mm256_add_ps(visibility, plane)),
-      _mm256_set1_ps(kMaxExponent));
-  const float kernel = kB3[std::abs(ky)] * kB3[std::abs(kx)];
-  const __m256 wq = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(kernel), wn),
-                                  _mm256_mul_ps(tap(in.valid), exp_neg8(exponent)));
+  const __m256 luminance =
+      _mm256_min_ps(_mm256_mul_ps(_mm256_mul_ps(dl, counts), _mm256_rsqrt_ps(spread)),
+                    _mm256_set1_ps(kMaxExponent));
+  const __m256 wq = _mm256_mul_ps(guide, _mm256_mul_ps(tap(in.valid), exp_neg8(luminance)));
   const __m256 cr = _mm256_mul_ps(wq, _mm256_sub_ps(tap(in.r), base_r));
   const __m256 cg = _mm256_mul_ps(wq, _mm256_sub_ps(tap(in.g), base_g));
   const __m256 cb = _mm256_mul_ps(wq, _mm256_sub_ps(tap(in.b), base_b));
@@ -430,84 +268,65 @@ Coefficients fit(const TapSums& s, const DenoiseParams& params) {
 }
 
 void atrous_step(const Layer& in, Layer& out, const FloatPlane& lum, const FloatPlane& noise,
-                 const GuidePlanes& guide, int w, int h, int step, const DenoiseParams& params) {
-  const StepConstants k{1.0f / (params.sigma_albedo * params.sigma_albedo),
-                        params.sigma_visibility * params.sigma_visibility,
-                        params.sigma_plane * params.sigma_plane, params.normal_squarings,
-                        params.first_order};
-  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  // Lanes [lo, hi) of a chunk.
-  auto lanes_between = [&](int lo, int hi) {
-    const __m256i from = _mm256_cmpgt_epi32(_mm256_set1_epi32(lo), lane);  // lane < lo
-    return _mm256_andnot_si256(from, _mm256_cmpgt_epi32(_mm256_set1_epi32(hi), lane));
-  };
-  for_rows(h, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const ptrdiff_t row = static_cast<ptrdiff_t>(y) * w;
-      for (int x0 = 0; x0 < w; x0 += 8) {
-        const int lanes = std::min(8, w - x0);
-        const ptrdiff_t c = row + x0;
-        const __m256i centre_mask = lanes_between(0, lanes);
-        const bool whole = lanes == 8;
-        auto at_centre = [&](const FloatPlane& v) { return load8(v, c, centre_mask, whole); };
-        // Differences are taken from the centre, so a constant neighbourhood stays exactly
-        // constant; a pixel without a value takes its neighbours' weighted mean, and its
-        // luminance means nothing.
-        const __m256 valid = at_centre(in.valid);
-        const __m256 has = _mm256_cmp_ps(valid, _mm256_setzero_ps(), _CMP_GT_OQ);
-        const __m256 counts = _mm256_and_ps(has, _mm256_set1_ps(1.0f));
-        const __m256 r = at_centre(in.r), g = at_centre(in.g), b = at_centre(in.b);
-        const __m256 base_r = _mm256_and_ps(r, has);
-        const __m256 base_g = _mm256_and_ps(g, has);
-        const __m256 base_b = _mm256_and_ps(b, has);
-        const CentreGuide centre(guide, lum, noise, k.visibility_sigma2, c, centre_mask, whole);
-        TapSums s{};
-        for (int ky = -2; ky <= 2; ++ky) {
-          const int yy = y + ky * step;
-          if (yy < 0 || yy >= h) continue;
-          RowSums row_sums{};
-          for (int kx = -2; kx <= 2; ++kx) {
-            const int off = kx * step;
-            // Lanes whose tap lies inside the row.
-            const int lo = std::max(0, -off - x0), hi = std::min(lanes, w - off - x0);
-            if (lo >= hi) continue;
-            const ptrdiff_t q = static_cast<ptrdiff_t>(yy) * w + x0 + off;
-            const __m256i mask = lanes_between(lo, hi);
-            const bool full = lo == 0 && hi == 8;
-            // Both flags as types, so each combination gets its own compiled loop body.
-            auto add = [&](auto whole_chunk, auto first_order) {
-              add_tap<decltype(whole_chunk)::value, decltype(first_order)::value>(
-                  in, lum, noise, guide, centre, k, q, mask, kx, ky, base_r, base_g, base_b, counts,
-                  row_sums);
-            };
-            using Yes = std::true_type;
-            using No = std::false_type;
-            if (full)
-              k.first_order ? add(Yes{}, Yes{}) : add(Yes{}, No{});
-            else
-              k.first_order ? add(No{}, Yes{}) : add(No{}, No{});
-          }
-          s.add_row(row_sums, ky, k.first_order);
-        }
-        // Pixels whose taps all weigh 0 keep their input.
-        const __m256 filtered = _mm256_cmp_ps(s.weight, _mm256_setzero_ps(), _CMP_GT_OQ);
-        const Coefficients e = fit(s, params);
-        auto estimate = [&](__m256 base, __m256 sum, __m256 sum_x, __m256 sum_y) {
-          return _mm256_add_ps(
-              base,
-              _mm256_fmadd_ps(e.e0, sum, _mm256_fmadd_ps(e.e1, sum_x, _mm256_mul_ps(e.e2, sum_y))));
-        };
-        auto put = [&](FloatPlane& plane, __m256 kept, __m256 value) {
-          store8(plane, c, centre_mask, whole, _mm256_blendv_ps(kept, value, filtered));
-        };
-        put(out.r, r, estimate(base_r, s.r, s.rx, s.ry));
-        put(out.g, g, estimate(base_g, s.g, s.gx, s.gy));
-        put(out.b, b, estimate(base_b, s.b, s.bx, s.by));
-        put(out.variance, at_centre(in.variance),
-            _mm256_max_ps(variance_of(s, e), _mm256_setzero_ps()));
-        put(out.valid, valid, _mm256_set1_ps(1.0f));
-      }
-    }
+                 const uint16_t* guide_table, int w, int h, int step, const DenoiseParams& params) {
+  for_chunks(w, h, [&](const Chunk& chunk) {
+    auto at_centre = [&](const FloatPlane& v) {
+      return load8(v, chunk.c, chunk.mask, chunk.whole);
+    };
+    // Differences are taken from the centre, so a constant neighbourhood stays exactly
+    // constant; a pixel without a value takes its neighbours' weighted mean, and its
+    // luminance means nothing.
+    const __m256 valid = at_centre(in.valid);
+    const __m256 has = _mm256_cmp_ps(valid, _mm256_setzero_ps(), _CMP_GT_OQ);
+    const __m256 counts = _mm256_and_ps(has, _mm256_set1_ps(1.0f));
+    const __m256 r = at_centre(in.r), g = at_centre(in.g), b = at_centre(in.b);
+    const __m256 base_r = _mm256_and_ps(r, has);
+    const __m256 base_g = _mm256_and_ps(g, has);
+    const __m256 base_b = _mm256_and_ps(b, has);
+    const __m256 centre_lum = at_centre(lum);
+    const __m256 centre_spread = _mm256_add_ps(at_centre(noise), _mm256_set1_ps(kTinyNoise));
+    const uint16_t* weights = guide_table + chunk_table_offset(w, chunk);
+    TapSums s{};
+    RowSums row_sums{};
+    for_taps(
+        chunk, w, h, step,
+        [&](int kx, int ky, ptrdiff_t q, __m256i mask, bool full) {
+          const __m256 guide = _mm256_cvtph_ps(
+              _mm_loadu_si128(reinterpret_cast<const __m128i*>(weights + tap_index(kx, ky) * 8)));
+          // Both flags as types, so each combination gets its own compiled loop body.
+          auto add = [&](auto whole_chunk, auto first_order) {
+            add_tap<decltype(whole_chunk)::value, decltype(first_order)::value>(
+                in, lum, noise, centre_lum, centre_spread, guide, q, mask, kx, base_r, base_g,
+                base_b, counts, row_sums);
+          };
+          using Yes = std::true_type;
+          using No = std::false_type;
+          if (full)
+            params.first_order ? add(Yes{}, Yes{}) : add(Yes{}, No{});
+          else
+            params.first_order ? add(No{}, Yes{}) : add(No{}, No{});
+        },
+        [&](int ky) {
+          s.add_row(row_sums, ky, params.first_order);
+          row_sums = RowSums{};
+        });
+    // Pixels whose taps all weigh 0 keep their input.
+    const __m256 filtered = _mm256_cmp_ps(s.weight, _mm256_setzero_ps(), _CMP_GT_OQ);
+    const Coefficients e = fit(s, params);
+    auto estimate = [&](__m256 base, __m256 sum, __m256 sum_x, __m256 sum_y) {
+      return _mm256_add_ps(
+          base,
+          _mm256_fmadd_ps(e.e0, sum, _mm256_fmadd_ps(e.e1, sum_x, _mm256_mul_ps(e.e2, sum_y))));
+    };
+    auto put = [&](FloatPlane& plane, __m256 kept, __m256 value) {
+      store8(plane, chunk.c, chunk.mask, chunk.whole, _mm256_blendv_ps(kept, value, filtered));
+    };
+    put(out.r, r, estimate(base_r, s.r, s.rx, s.ry));
+    put(out.g, g, estimate(base_g, s.g, s.gx, s.gy));
+    put(out.b, b, estimate(base_b, s.b, s.bx, s.by));
+    put(out.variance, at_centre(in.variance),
+        _mm256_max_ps(variance_of(s, e), _mm256_setzero_ps()));
+    put(out.valid, valid, _mm256_set1_ps(1.0f));
   });
 }
 
@@ -529,37 +348,28 @@ NoisyImage noisy_image(const Film& film) {
 }
 
 std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f,
-                                  const DenoiseParams& params, int first_kept) {
+                                  const DenoiseParams& params, int first_kept,
+                                  const GuideWeights* guides) {
   const int w = in.color.width(), h = in.color.height();
   const size_t pixels = static_cast<size_t>(w) * h;
-  if (f.width != w || f.height != h || f.albedo.size() != pixels || f.normal.size() != pixels ||
-      (!f.emitter.empty() && f.emitter.size() != pixels) ||
-      (!f.position.empty() && f.position.size() != pixels) ||
-      (!f.visibility.empty() &&
-       (f.visibility.size() != pixels || f.visibility_variance.size() != pixels)) ||
-      in.variance.size() != pixels || in.has_estimate.size() != pixels)
+  check_features(f, w, h);
+  if (in.variance.size() != pixels || in.has_estimate.size() != pixels)
     throw std::invalid_argument("denoise: image, variance and features differ in size");
-  if (params.iterations < 0 || params.iterations > kMostIterations)
-    throw std::invalid_argument("denoise: iterations must be in [0, " +
-                                std::to_string(kMostIterations) + "]");
-  // Past 32 squarings (an exponent of 2^32) every pair of distinct normals weighs 0 anyway.
-  if (params.normal_squarings < 0 || params.normal_squarings > 32)
-    throw std::invalid_argument("denoise: normal_squarings must be in [0, 32]");
-  if (!(params.sigma_plane > 0) || !std::isfinite(params.sigma_plane))
-    throw std::invalid_argument("denoise: sigma_plane must be positive and finite");
-  if (!(params.slope_ridge >= 0) || !std::isfinite(params.slope_ridge) ||
-      !(params.first_order_shrinkage >= 0) || !std::isfinite(params.first_order_shrinkage))
+  check_params(params);
+  if (guides && !guides->fits(w, h, params))
     throw std::invalid_argument(
-        "denoise: slope_ridge and first_order_shrinkage must be non-negative and finite");
-  if (!(params.sigma_visibility > 0) || !std::isfinite(params.sigma_visibility) ||
-      !(params.visibility_noise_deviations >= 0))
-    throw std::invalid_argument(
-        "denoise: sigma_visibility must be positive and finite, "
-        "visibility_noise_deviations non-negative");
+        "denoise: the guide weights were computed for another size, fewer iterations or other "
+        "guide parameters");
 
   const FloatPlane variance = completed_variance(in);
   const std::vector<uint8_t> kept = near_emitters(f);
-  const GuidePlanes guide(f, params);
+  // Without shared guide weights each iteration's are computed into one buffer in turn.
+  std::optional<GuidePlanes> guide;
+  std::vector<uint16_t> own_table;
+  if (!guides) {
+    guide.emplace(f, params);
+    own_table.resize(table_halves(w, h));
+  }
   Layer a(pixels);
   for (size_t p = 0; p < pixels; ++p) {
     const Color& c = in.color.data()[p];
@@ -597,7 +407,9 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
   for (int i = 0; i < params.iterations; ++i) {
     for (size_t p = 0; p < pixels; ++p) lum[p] = luminance(Color(a.r[p], a.g[p], a.b[p]));
     blur_variance(a, w, h, params.sigma_luminance * params.sigma_luminance, noise);
-    atrous_step(a, b, lum, noise, guide, w, h, 1 << i, params);
+    const uint16_t* table = guides ? guides->table(i) : own_table.data();
+    if (!guides) build_guide_table(*guide, w, h, 1 << i, params, own_table.data());
+    atrous_step(a, b, lum, noise, table, w, h, 1 << i, params);
     std::swap(a, b);
     if (i + 1 >= first_kept) levels.push_back(remodulated(a));
   }
@@ -605,8 +417,9 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
   return levels;
 }
 
-Image denoise(const NoisyImage& in, const DenoiseFeatures& f, const DenoiseParams& params) {
-  return std::move(denoise_levels(in, f, params, params.iterations).back());
+Image denoise(const NoisyImage& in, const DenoiseFeatures& f, const DenoiseParams& params,
+              const GuideWeights* guides) {
+  return std::move(denoise_levels(in, f, params, params.iterations, guides).back());
 }
 
 }  // namespace tuneray

@@ -11,6 +11,7 @@
 // Biased (it trades noise for blur); QualityOptions::denoise switches it on.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -58,15 +59,39 @@ struct NoisyImage {
 // The film's current estimate and its per-pixel variance of the mean.
 NoisyImage noisy_image(const Film& film);
 
-// The filtered image. Throws std::invalid_argument when the sizes disagree.
+// The guides' share of the filter's weights (the kernel, normal, albedo, visibility and plane
+// terms) for every pixel, tap and iteration, as half floats. It depends only on the features and
+// the parameters, so the frames of one view can share it (FrameResolver keeps one) and each
+// filtering computes only the luminance term: 50 bytes per pixel and iteration.
+class GuideWeights {
+ public:
+  // For params.iterations iterations. Throws std::invalid_argument as denoise does for bad
+  // features or parameters.
+  GuideWeights(const DenoiseFeatures& features, const DenoiseParams& params);
+  static size_t bytes_for(int width, int height, int iterations);
+  // Whether it serves a filter of this size and these parameters (no more iterations, the same
+  // guide terms).
+  bool fits(int width, int height, const DenoiseParams& params) const;
+  // Iteration i's weights, in the filter's internal layout.
+  const uint16_t* table(int iteration) const;
+
+ private:
+  int width_, height_;
+  DenoiseParams params_;
+  std::vector<uint16_t> halves_;
+};
+
+// The filtered image, with `guides` when given (it must fit the image and parameters). Throws
+// std::invalid_argument when the sizes disagree or `guides` does not fit.
 Image denoise(const NoisyImage& in, const DenoiseFeatures& features,
-              const DenoiseParams& params = {});
+              const DenoiseParams& params = {}, const GuideWeights* guides = nullptr);
 
 // The image after 0 (the input), 1, ..., params.iterations iterations: filters of rising
 // strength (each iteration doubles the reach) for the price of the strongest. Only levels from
 // `first_kept` on are returned (the strongest alone when first_kept = iterations). Throws as
 // denoise does.
 std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& features,
-                                  const DenoiseParams& params, int first_kept = 0);
+                                  const DenoiseParams& params, int first_kept = 0,
+                                  const GuideWeights* guides = nullptr);
 
 }  // namespace tuneray

@@ -10,23 +10,29 @@ Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
   auto start = std::chrono::steady_clock::now();
   Image image;
   if (renderer.settings().quality.denoise) {
-    if (!features_) features_ = render_denoise_features(renderer);
+    if (!features_) {
+      features_ = render_denoise_features(renderer);
+      if (GuideWeights::bytes_for(film.width(), film.height(), params_.iterations) <=
+          kMaxGuideWeightBytes)
+        guide_weights_.emplace(*features_, params_);
+    }
+    const GuideWeights* guides = guide_weights_ ? &*guide_weights_ : nullptr;
     const uint64_t samples = film.total_samples();
     if (static_cast<double>(samples) <
         kFirstChoiceSpp * static_cast<double>(film.width()) * film.height()) {
       // Too few pixels have samples in both halves for a choice; the strongest is what the
       // choice gives where no pixel of the window has both.
       choice_.clear();
-      image = denoise(noisy_image(film), *features_, params_);
+      image = denoise(noisy_image(film), *features_, params_, guides);
     } else {
       if (choice_.empty() || samples < chosen_at_samples_ ||
           static_cast<double>(samples) >=
               kReselectGrowth * static_cast<double>(chosen_at_samples_)) {
         choice_ = choose_strength(noisy_half_image(film, 0), noisy_half_image(film, 1), *features_,
-                                  params_, selection_);
+                                  params_, selection_, guides);
         chosen_at_samples_ = samples;
       }
-      image = denoise_chosen(noisy_image(film), *features_, params_, choice_);
+      image = denoise_chosen(noisy_image(film), *features_, params_, choice_, guides);
     }
   } else {
     image = film.resolve();

@@ -4,6 +4,7 @@
 // unbiased estimate and every frame filters the better estimate afresh.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -27,6 +28,7 @@ class FrameResolver {
   // Call after TileRenderer::set_camera: the kept features and strengths show the old view.
   void camera_moved() {
     features_.reset();
+    guide_weights_.reset();
     choice_.clear();
   }
 
@@ -37,6 +39,10 @@ class FrameResolver {
   DenoiseParams params_;
   SelectionParams selection_;
   std::optional<DenoiseFeatures> features_;
+  // The guides' weights, computed with the features for every frame of the view unless they
+  // would take more memory than this (then each filtering computes its own).
+  static constexpr size_t kMaxGuideWeightBytes = size_t{640} << 20;
+  std::optional<GuideWeights> guide_weights_;
   // The per-pixel strengths the halves chose, and the film's sample count then. Filtering both
   // halves costs twice the frame's own filtering, and the choice changes slowly with the
   // samples, so it is renewed only once the film has kReselectGrowth times the samples.

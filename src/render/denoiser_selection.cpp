@@ -140,13 +140,14 @@ Image compose_levels(const std::vector<Image>& levels, const std::vector<uint8_t
 
 std::vector<uint8_t> choose_strength(const NoisyImage& half_a, const NoisyImage& half_b,
                                      const DenoiseFeatures& features, const DenoiseParams& params,
-                                     const SelectionParams& selection) {
-  return select_levels(denoise_levels(half_a, features, params), half_a,
-                       denoise_levels(half_b, features, params), half_b, selection);
+                                     const SelectionParams& selection, const GuideWeights* guides) {
+  return select_levels(denoise_levels(half_a, features, params, 0, guides), half_a,
+                       denoise_levels(half_b, features, params, 0, guides), half_b, selection);
 }
 
 Image denoise_chosen(const NoisyImage& in, const DenoiseFeatures& features,
-                     const DenoiseParams& params, const std::vector<uint8_t>& choice) {
+                     const DenoiseParams& params, const std::vector<uint8_t>& choice,
+                     const GuideWeights* guides) {
   if (choice.size() != in.has_estimate.size()) fail("the choice differs in size");
   const auto [lowest, highest] = std::minmax_element(choice.begin(), choice.end());
   if (lowest == choice.end()) return in.color;  // an empty image
@@ -154,7 +155,7 @@ Image denoise_chosen(const NoisyImage& in, const DenoiseFeatures& features,
     fail("strength " + std::to_string(*highest) + " is beyond the filter's iterations");
   DenoiseParams strongest = params;
   strongest.iterations = *highest;
-  return compose_levels(denoise_levels(in, features, strongest, *lowest), choice, *lowest);
+  return compose_levels(denoise_levels(in, features, strongest, *lowest, guides), choice, *lowest);
 }
 
 Image denoise_cross_validated(const NoisyImage& full, const NoisyImage& half_a,

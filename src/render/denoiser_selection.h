@@ -46,15 +46,18 @@ Image compose_levels(const std::vector<Image>& levels, const std::vector<uint8_t
 
 // Per pixel, the strength (0: raw, to params.iterations) the halves choose: select_levels on
 // their filter levels. Throws as denoise and select_levels do.
+// `guides`, when given, as in denoise.
 std::vector<uint8_t> choose_strength(const NoisyImage& half_a, const NoisyImage& half_b,
                                      const DenoiseFeatures& features,
                                      const DenoiseParams& params = {},
-                                     const SelectionParams& selection = {});
+                                     const SelectionParams& selection = {},
+                                     const GuideWeights* guides = nullptr);
 
 // The image filtered per pixel to the strength `choice` names (the filter runs only to the
 // strongest chosen). Throws as denoise and compose_levels do.
 Image denoise_chosen(const NoisyImage& in, const DenoiseFeatures& features,
-                     const DenoiseParams& params, const std::vector<uint8_t>& choice);
+                     const DenoiseParams& params, const std::vector<uint8_t>& choice,
+                     const GuideWeights* guides = nullptr);
 
 // Both steps: the full image filtered per pixel to the strength its halves choose.
 Image denoise_cross_validated(const NoisyImage& full, const NoisyImage& half_a,

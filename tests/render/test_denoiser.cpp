@@ -272,6 +272,52 @@ TEST(Denoiser, SizeMismatchIsRefused) {
   EXPECT_THROW(denoise(known_variance(fits, 0.0f), short_positions), std::invalid_argument);
 }
 
+// A frame's filtering with the view's guide weights computed once (as FrameResolver does) is the
+// same computation as one that computes them itself: equal to the bit, on an image whose width
+// is not a multiple of the eight-pixel chunks, with albedo, normal, visibility and position
+// edges; guide weights of another view or parameters are refused.
+TEST(Denoiser, SharedGuideWeightsGiveTheSameImageAndOnlyFitTheirView) {
+  const int w = 45, h = 31;
+  DenoiseFeatures f = testing::flat_features(w, h, Color(0.5f));
+  f.visibility.assign(static_cast<size_t>(w) * h, 1.0f);
+  f.visibility_variance.assign(f.visibility.size(), 0.001f);
+  f.position.assign(f.visibility.size(), Vec3f(0.0f));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t p = static_cast<size_t>(y) * w + x;
+      if (x > 20) f.albedo[p] = Color(0.2f, 0.6f, 0.3f);
+      if (y > 12) f.normal[p] = normalize(Vec3f(0.3f, 0.2f, 1.0f));
+      if (x + y > 40) f.visibility[p] = 0.0f;
+      f.position[p] = Vec3f(static_cast<float>(x), static_cast<float>(y), x > 30 ? 5.0f : 0.0f);
+    }
+  Image clean(w, h, Color(0.3f, 0.4f, 0.5f));
+  NoisyImage in = known_variance(with_noise(clean, 0.1f, 11), 0.01f);
+  in.has_estimate[7] = 0;
+  in.variance[50] = -1.0f;
+
+  DenoiseParams params;
+  const GuideWeights guides(f, params);
+  const std::vector<Image> own = denoise_levels(in, f, params);
+  const std::vector<Image> shared = denoise_levels(in, f, params, 0, &guides);
+  ASSERT_EQ(own.size(), shared.size());
+  for (size_t level = 0; level < own.size(); ++level)
+    EXPECT_EQ(compare_images(own[level], shared[level]).rmse, 0.0) << level;
+  EXPECT_GT(compare_images(own.back(), in.color).rmse, 0.01);  // it did filter
+
+  DenoiseParams fewer = params;
+  fewer.iterations = 3;
+  EXPECT_EQ(compare_images(denoise(in, f, fewer), denoise(in, f, fewer, &guides)).rmse, 0.0);
+  DenoiseParams more = params;
+  more.iterations = params.iterations + 1;
+  EXPECT_THROW(denoise(in, f, more, &guides), std::invalid_argument);
+  DenoiseParams sharper = params;
+  sharper.sigma_albedo = 0.05f;
+  EXPECT_THROW(denoise(in, f, sharper, &guides), std::invalid_argument);
+  const DenoiseFeatures other = testing::flat_features(w + 1, h, Color(0.5f));
+  EXPECT_THROW(denoise(known_variance(Image(w + 1, h), 0.0f), other, params, &guides),
+               std::invalid_argument);
+}
+
 // A point light over a floor, a square occluder between them: its shadow on the floor is the
 // square scaled by 2 from the light. Where all of a pixel's feature rays reach the floor well
 // inside that shadow, visibility is exactly 0; well outside it, exactly 1; noise-free both.
