@@ -10,16 +10,17 @@ Image Film::resolve() const {
   for (int y = 0; y < height(); ++y)
     for (int x = 0; x < width(); ++x) {
       const Pixel& p = pixel(x, y);
-      out.at(x, y) = p.samples > 0 ? p.sum / static_cast<float>(p.samples) : Color(0.0f);
+      const uint32_t n = p.samples();
+      out.at(x, y) = n > 0 ? p.sum() / static_cast<float>(n) : Color(0.0f);
     }
   return out;
 }
 
 double Film::variance_of_mean(int x, int y) const {
   const Pixel& p = pixel(x, y);
-  double n = p.samples;
+  double n = p.samples();
   if (n < 2) return 0.0;
-  const Color& sum = p.sum;
+  const Color sum = p.sum();
   const SquareSum& sq = p.squares;
   // Per channel (n - 1) x the sample variance, sum of squares minus n x mean^2; two divisions
   // per pixel instead of seven (adaptive sampling reads every pixel every pass).
@@ -34,7 +35,7 @@ double Film::variance_of_mean(int x, int y) const {
 
 uint64_t Film::total_samples() const {
   uint64_t total = 0;
-  for (const Pixel& p : pixels_) total += p.samples;
+  for (const Pixel& p : pixels_) total += p.samples();
   return total;
 }
 
@@ -52,8 +53,9 @@ double Film::mean_value_length() const {
   for (int y = 0; y < height(); ++y)
     for (int x = 0; x < width(); ++x) {
       const Pixel& p = pixel(x, y);
-      if (p.samples == 0) continue;
-      total += length(p.sum) / p.samples;
+      const uint32_t n = p.samples();
+      if (n == 0) continue;
+      total += length(p.sum()) / n;
       ++counted;
     }
   return counted > 0 ? total / static_cast<double>(counted) : 0.0;

@@ -25,24 +25,6 @@ struct SquareSum {
   }
 };
 
-// One pixel's samples of a pass, with their indices' parity: the film also keeps two half
-// films (even and odd sample indices), independent estimates of the same pixel that let the
-// denoiser measure its own error (render/denoiser_selection.h).
-struct PixelSamples {
-  Color sum{0.0f};
-  uint32_t count = 0;
-  SquareSum squares;
-  Color half_sum[2] = {Color(0.0f), Color(0.0f)};
-  uint32_t half_count[2] = {0, 0};
-  void add(Color radiance, uint32_t sample_index) {
-    sum += radiance;
-    ++count;
-    squares.add(radiance);
-    half_sum[sample_index & 1] += radiance;
-    ++half_count[sample_index & 1];
-  }
-};
-
 class Film {
  public:
   // Upper bound of a render's memory per pixel: the film (sum, count, squares, two halves),
@@ -64,31 +46,28 @@ class Film {
   // parity, so one-sample adds alternate between the halves as the schedulers' indices do.
   void add(int x, int y, Color radiance_sum, uint32_t count, const SquareSum& squares = {}) {
     Pixel& p = pixel(x, y);
-    const int half = p.samples & 1;
-    p.add_full(radiance_sum, count, squares);
+    const int half = p.samples() & 1;
+    p.add_squares(squares);
     p.half_sum[half] += radiance_sum;
     p.half_samples[half] += count;
   }
-  void add(int x, int y, const PixelSamples& s) {
+  // One sample of index `index`. The film keeps two half films, of the even and of the odd
+  // sample indices: independent estimates of the same pixel that let the denoiser measure its
+  // own error (render/denoiser_selection.h). The index's parity picks the half.
+  void add_sample(int x, int y, Color radiance, uint32_t index) {
     Pixel& p = pixel(x, y);
-    p.add_full(s.sum, s.count, s.squares);
-    for (int h = 0; h < 2; ++h) {
-      p.half_sum[h] += s.half_sum[h];
-      p.half_samples[h] += s.half_count[h];
-    }
+    p.squares.add(radiance);
+    p.half_sum[index & 1] += radiance;
+    ++p.half_samples[index & 1];
   }
   // Asks for pixel (x, y)'s record ahead of an add: the schedulers add pixels in blocks
   // (wave_pixel_order.h), whose rows are too short for the hardware's stream prefetchers, and
-  // a 640×360 film is larger than the caches. A record spans at most two lines. Always
-  // inlined: GCC 12 finds an out-of-line copy free of side effects and deletes its calls.
-  [[gnu::always_inline]] void prefetch(int x, int y) const {
-    const char* p = reinterpret_cast<const char*>(&pixel(x, y));
-    __builtin_prefetch(p, 1);
-    __builtin_prefetch(p + sizeof(Pixel) - 1, 1);
-  }
-  uint32_t samples(int x, int y) const { return pixel(x, y).samples; }
-  uint64_t total_samples() const;                                   // over all pixels
-  const Color& sum(int x, int y) const { return pixel(x, y).sum; }  // of the pixel's samples
+  // a 640×360 film is larger than the caches. A record is one cache line. Always inlined: GCC 12
+  // finds an out-of-line copy free of side effects and deletes its calls.
+  [[gnu::always_inline]] void prefetch(int x, int y) const { __builtin_prefetch(&pixel(x, y), 1); }
+  uint32_t samples(int x, int y) const { return pixel(x, y).samples(); }
+  uint64_t total_samples() const;                              // over all pixels
+  Color sum(int x, int y) const { return pixel(x, y).sum(); }  // of the pixel's samples
   // The half films: samples of even (half 0) and odd (half 1) index.
   uint32_t half_samples(int half, int x, int y) const { return pixel(x, y).half_samples[half]; }
   const Color& half_sum(int half, int x, int y) const { return pixel(x, y).half_sum[half]; }
@@ -110,23 +89,22 @@ class Film {
   void clear();
 
  private:
-  // Everything an add writes for one pixel, side by side: an add at one sample per pixel
-  // touches one record (two cache lines) instead of a line in each of seven arrays.
-  struct Pixel {
+  // Everything an add writes for one pixel in one cache line: an add at one sample per pixel
+  // touches one line. The full film's sum and count are its halves' (even and odd sample
+  // indices), so they are not stored apart.
+  struct alignas(64) Pixel {
     SquareSum squares;
-    Color sum{0.0f};
-    uint32_t samples = 0;
     Color half_sum[2] = {Color(0.0f), Color(0.0f)};
     uint32_t half_samples[2] = {0, 0};
-    // The full film's part of an add.
-    void add_full(Color radiance_sum, uint32_t count, const SquareSum& s) {
-      sum += radiance_sum;
-      samples += count;
+    Color sum() const { return half_sum[0] + half_sum[1]; }
+    uint32_t samples() const { return half_samples[0] + half_samples[1]; }
+    void add_squares(const SquareSum& s) {
       squares.r += s.r;
       squares.g += s.g;
       squares.b += s.b;
     }
   };
+  static_assert(sizeof(Pixel) == 64);
   Pixel& pixel(int x, int y) { return pixels_[static_cast<size_t>(y) * width_ + x]; }
   const Pixel& pixel(int x, int y) const { return pixels_[static_cast<size_t>(y) * width_ + x]; }
 

@@ -268,19 +268,14 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
 }
 
 void TileRenderer::add_to_film(const WaveBuffers& b, Film& film) const {
-  // Each pixel's samples are consecutive slots, in index order, as a lone path loop adds them.
-  PixelSamples samples;
+  // Each pixel's samples are consecutive slots, in index order, as a lone path loop adds them;
+  // each goes straight to the film (its record is in the cache after the first).
   // Film lines are asked for this many samples ahead (a few pixels at any spp).
   constexpr size_t kAhead = 32;
   for (size_t k = 0; k < b.ids.size(); ++k) {
     if (k + kAhead < b.ids.size()) film.prefetch(b.ids[k + kAhead].x, b.ids[k + kAhead].y);
     const PixelSampleId& id = b.ids[k];
-    samples.add(b.result[k], id.index);
-    const bool last = k + 1 == b.ids.size() || b.ids[k + 1].x != id.x || b.ids[k + 1].y != id.y;
-    if (last) {
-      film.add(static_cast<int>(id.x), static_cast<int>(id.y), samples);
-      samples = PixelSamples{};
-    }
+    film.add_sample(static_cast<int>(id.x), static_cast<int>(id.y), b.result[k], id.index);
   }
 }
 

@@ -41,22 +41,30 @@ Halves noisy_halves(const Image& clean, float half_sigma) {
 }
 
 TEST(HalfFilms, TheHalvesSumToTheFullFilmExactly) {
-  // Multiples of 1/8 add exactly in any order, so the sums must agree bit for bit.
+  // Multiples of 1/8 add exactly in any order, so the sums must agree bit for bit with the
+  // samples' own sum, and the halves hold the even and the odd indices.
   Film film(3, 2);
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 3; ++x) {
-      PixelSamples s;
-      for (uint32_t i = 0; i < 5u + x; ++i) s.add(Color(0.125f * i, 0.25f * (x + i), 1.0f), i);
-      film.add(x, y, s);
+      for (uint32_t i = 0; i < 5u + x; ++i)
+        film.add_sample(x, y, Color(0.125f * i, 0.25f * (x + i), 1.0f), i);
       film.add(x, y, Color(0.5f), 1);  // without indices: the half of the count's parity
     }
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 3; ++x) {
       const uint32_t n = 6u + x;
+      Color expected[2] = {Color(0.0f), Color(0.0f)};
+      for (uint32_t i = 0; i < 5u + x; ++i)
+        expected[i & 1] += Color(0.125f * i, 0.25f * (x + i), 1.0f);
+      expected[(5u + x) & 1] += Color(0.5f);
       EXPECT_EQ(film.samples(x, y), n);
       EXPECT_EQ(film.half_samples(0, x, y) + film.half_samples(1, x, y), n);
       EXPECT_EQ(film.half_samples(0, x, y), (5u + x + 1) / 2 + ((5u + x) % 2 == 0 ? 1 : 0));
-      const Color sum = film.half_sum(0, x, y) + film.half_sum(1, x, y);
+      for (int h = 0; h < 2; ++h) {
+        EXPECT_EQ(film.half_sum(h, x, y).x, expected[h].x) << h;
+        EXPECT_EQ(film.half_sum(h, x, y).y, expected[h].y) << h;
+      }
+      const Color sum = expected[0] + expected[1];
       EXPECT_EQ(sum.x, film.sum(x, y).x);
       EXPECT_EQ(sum.y, film.sum(x, y).y);
       EXPECT_EQ(sum.z, film.sum(x, y).z);
@@ -96,9 +104,7 @@ TEST(HalfFilms, BothSchedulersSplitTheSamplesByIndexParity) {
 
 TEST(HalfFilms, AHalfImageHasTheHalfsMeanAndTwiceTheVariance) {
   Film film(1, 1);
-  PixelSamples s;
-  for (uint32_t i = 0; i < 4; ++i) s.add(Color(static_cast<float>(i)), i);  // 0, 1, 2, 3
-  film.add(0, 0, s);
+  for (uint32_t i = 0; i < 4; ++i) film.add_sample(0, 0, Color(static_cast<float>(i)), i);  // 0..3
   NoisyImage even = noisy_half_image(film, 0), odd = noisy_half_image(film, 1);
   EXPECT_EQ(even.color.at(0, 0).x, 1.0f);  // (0 + 2) / 2
   EXPECT_EQ(odd.color.at(0, 0).x, 2.0f);   // (1 + 3) / 2
