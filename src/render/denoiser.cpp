@@ -165,11 +165,10 @@ struct TapSums {
   }
 };
 
-// Adds the tap at offset (kx, ky) steps, pixel index `q` for the chunk's first lane, to the
-// row sums of the eight pixels from index `c` on: its guides' weight `guide` times the
-// luminance weight. `mask` marks lanes whose pixel and tap exist. The whole chunk's taps inside
-// the image (kFull) and the first-order sums are known when the loop is compiled, so the hot
-// path has neither masks nor branches.
+// Adds the tap at offset kx steps along the row, pixel index `q` for the chunk's first lane, to
+// the chunk's row sums: its guides' weight `guide` times the luminance weight. `mask` marks
+// lanes whose pixel and tap exist. The whole chunk's taps inside the image (kFull) and the
+// first-order sums are known when the loop is compiled, so the hot path has no masks.
 template <bool kFull, bool kFirstOrder>
 inline void add_tap(const Layer& in, const FloatPlane& lum, const FloatPlane& noise,
                     __m256 centre_lum, __m256 centre_spread, __m256 guide, ptrdiff_t q,

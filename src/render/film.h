@@ -27,7 +27,7 @@ struct SquareSum {
 
 class Film {
  public:
-  // Upper bound of a render's memory per pixel: the film (sum, count, squares, two halves),
+  // Upper bound of a render's memory per pixel: the film (squares and two half films),
   // the resolved image and its file encoding, the schedulers' and adaptive sampling's
   // per-pixel arrays.
   static constexpr uint64_t kBytesPerPixelBound = 160;
