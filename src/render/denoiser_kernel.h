@@ -30,11 +30,10 @@ inline constexpr float kTinyChord = 1e-30f;
 
 // e^-x for x in [0, kMaxExponent] on eight lanes, to ~2e-4 relative: 2^(integer part) from
 // the exponent bits times a polynomial for 2^(fraction). A weight needs no more precision,
-// and the library exp would be most of the filter's time. log2(e^-x) + 127 is in [11, 127]:
-// positive, so truncation is the floor, and the integer part is the biased exponent of a
-// normal float.
-// The polynomial is evaluated in Estrin's scheme (pairs, then powers of f): it lies on every
-// tap's critical path, and this halves its chain of dependent multiplies.
+// and the library exp would be most of the filter's time. log2(e^-x) + 127 is in [11, 127], so
+// its floor is the biased exponent of a normal float. The polynomial is evaluated in Estrin's
+// scheme (pairs, then powers of f): it lies on every tap's critical path, and this halves its
+// chain of dependent multiplies.
 inline __m256 exp_neg8(__m256 x) {
   const __m256 t = _mm256_fnmadd_ps(x, _mm256_set1_ps(1.44269504f), _mm256_set1_ps(127.0f));
   const __m256 whole = _mm256_round_ps(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
@@ -79,7 +78,7 @@ inline void store8(FloatPlane& v, ptrdiff_t i, __m256i mask, bool full, __m256 v
 }
 
 // v^(2^n). The default's squarings are unrolled: a counted loop around one multiply costs as
-// much again in loop instructions, and this sits on every tap's critical path.
+// much again in loop instructions, and this sits on each guide weight's critical path.
 inline __m256 repeated_squares(__m256 v, int n) {
   constexpr int kDefault = DenoiseParams{}.normal_squarings;
   if (n == kDefault) {
