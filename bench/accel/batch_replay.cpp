@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "accel/embree_native.h"
+#include "accel/kernel_isa.h"
 #include "accel/tuned_bvh.h"
 #include "render/blue_noise_sampler.h"
 #include "render/film.h"
@@ -252,10 +253,11 @@ int replay_main(int argc, char** argv) {
   size_t rays[kPhases] = {};
   for (const Batch& b : recorder.batches) rays[b.phase] += b.rays.size();
   const bvh::TreeStats& ts = tuned.tree_stats();
-  std::printf("%s: %zu triangles, tuned %s: %zu nodes, %zu leaves, %.2f triangles a leaf\n",
-              scene_spec.c_str(), scene.triangles.size(), tuned.describe().c_str(), ts.node_count,
-              ts.leaf_count,
-              static_cast<double>(ts.references) / static_cast<double>(ts.leaf_count));
+  std::printf(
+      "%s: %zu triangles, tuned %s: %zu nodes, %zu leaves, %.2f triangles a leaf; kernels %s\n",
+      scene_spec.c_str(), scene.triangles.size(), tuned.describe().c_str(), ts.node_count,
+      ts.leaf_count, static_cast<double>(ts.references) / static_cast<double>(ts.leaf_count),
+      bvh::to_string(bvh::kernel_isa()));
 
   Replayer replay;
   replay.batches = &recorder.batches;
@@ -285,6 +287,7 @@ int replay_main(int argc, char** argv) {
   std::printf("%-7s %9s %10s %10s %7s %10s %10s %7s %10s\n", "phase", "rays", "native ms",
               "tuned ms", "n/t", "native lo", "tuned lo", "n/t lo", "nat 1/call");
   for (int p = 0; p < kPhases; ++p) {
+    if (only >= 0 && p != only) continue;  // not replayed
     const double n = median(times[0][p]) * 1e3, t = median(times[1][p]) * 1e3;
     const double nl = lowest(times[0][p]) * 1e3, tl = lowest(times[1][p]) * 1e3;
     std::printf("%-7s %9zu %10.2f %10.2f %7.3f %10.2f %10.2f %7.3f %10.2f\n", kPhaseName[p],
@@ -292,6 +295,7 @@ int replay_main(int argc, char** argv) {
   }
   if (ab) {
     for (int p = 0; p < kPhases; ++p) {
+      if (only >= 0 && p != only) continue;
       const double t = median(times[1][p]) * 1e3, b = median(times[3][p]) * 1e3;
       const double tl = lowest(times[1][p]) * 1e3, bl = lowest(times[3][p]) * 1e3;
       std::printf("ab %-7s tuned %10.2f  %s %10.2f  a/b %7.3f  lowest a/b %7.3f\n", kPhaseName[p],

@@ -1,18 +1,54 @@
 // The tuned BVH's packet traversal of coherent batches (bvh_packet.cpp) against its single-ray
 // kernels: every ray must get the same hit bit for bit, so the wavefront image (camera rays as
-// packets) stays the tile image (single rays).
+// packets) stays the tile image (single rays). Each test runs with each copy of the stream
+// kernels this CPU can run (AVX2; AVX-512 where there is one), chosen as a user would choose
+// them, through TUNERAY_KERNEL_ISA.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "accel/kernel_isa.h"
 #include "accel/tuned_bvh.h"
 #include "batch_check.h"
 #include "test_geometry.h"
 
 namespace tuneray::test {
 namespace {
+
+using bvh::KernelIsa;
+
+// Sets TUNERAY_KERNEL_ISA to the test's copy for the test's duration; trees built meanwhile
+// select that copy's kernels.
+class TunedPackets : public ::testing::TestWithParam<KernelIsa> {
+ protected:
+  void SetUp() override {
+    if (GetParam() == KernelIsa::kAvx512 && !bvh::cpu_has_avx512())
+      GTEST_SKIP() << "this CPU has no AVX-512";
+    if (const char* before = std::getenv(kVariable)) saved_ = before;
+    setenv(kVariable, bvh::to_string(GetParam()), 1);
+    ASSERT_EQ(bvh::kernel_isa(), GetParam());
+  }
+  void TearDown() override {
+    if (saved_.empty()) {
+      unsetenv(kVariable);
+    } else {
+      setenv(kVariable, saved_.c_str(), 1);
+    }
+  }
+
+ private:
+  static constexpr const char* kVariable = "TUNERAY_KERNEL_ISA";
+  std::string saved_;
+};
+
+INSTANTIATE_TEST_SUITE_P(KernelIsas, TunedPackets,
+                         ::testing::Values(KernelIsa::kAvx2, KernelIsa::kAvx512),
+                         [](const ::testing::TestParamInfo<KernelIsa>& info) {
+                           return std::string(bvh::to_string(info.param));
+                         });
 
 // A pinhole camera's rays in pixel order, from `eye` through a grid around the axis `forward`;
 // the grid spans four direction octants, so the batch splits into several packet groups.
@@ -46,7 +82,7 @@ void expect_streams_match_single_rays(const Mesh& mesh, const std::vector<Ray>& 
   }
 }
 
-TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
+TEST_P(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
   const Mesh mesh = make_soup(4000, 11, 0.08f);
   std::vector<Ray> rays = camera_rays(Vec3f(0.5f, 0.45f, -1.5f), Vec3f(0, 0, 1), 64, 48);
   // From inside the soup, looking back, with a finite range (rays that end before their hit).
@@ -59,7 +95,7 @@ TEST(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
 // Coherent batches are cut into runs of consecutive rays of one octant: runs of every length
 // (single rays below 4, partial packets, full streams and runs longer than a stream) and octant
 // changes at every position must leave each ray its single-ray hit.
-TEST(TunedPackets, RunsOfEveryLengthFindTheSingleRayHits) {
+TEST_P(TunedPackets, RunsOfEveryLengthFindTheSingleRayHits) {
   const Mesh mesh = make_soup(4000, 11, 0.08f);
   const std::vector<Ray> ahead = camera_rays(Vec3f(0.5f, 0.45f, -1.5f), Vec3f(0, 0, 1), 40, 30);
   const std::vector<Ray> back =
@@ -80,7 +116,7 @@ TEST(TunedPackets, RunsOfEveryLengthFindTheSingleRayHits) {
 // one of them enters. Narrow views (rays of a stream nearly parallel, so the frustum is tight)
 // onto a finely tessellated cube, whose triangles lie on the faces of their leaves' boxes: the
 // rays at a frustum's edge enter boxes by a hair.
-TEST(TunedPackets, TheStreamFrustumNeverCullsABoxARayEnters) {
+TEST_P(TunedPackets, TheStreamFrustumNeverCullsABoxARayEnters) {
   const Mesh cube = make_grid_box(48);
   std::vector<Ray> rays;
   const Vec3f eyes[] = {Vec3f(-1.3f, -1.1f, -1.7f), Vec3f(1.4f, 0.9f, -1.2f),
@@ -99,7 +135,7 @@ TEST(TunedPackets, TheStreamFrustumNeverCullsABoxARayEnters) {
   expect_streams_match_single_rays(cube, rays, configs);
 }
 
-TEST(TunedPackets, EqualDistancesGoToTheLowerTriangleOnBothPaths) {
+TEST_P(TunedPackets, EqualDistancesGoToTheLowerTriangleOnBothPaths) {
   // Every triangle twice (same vertices, consecutive indices): each hit is a tie, which both
   // paths must give to the lower (even) index whatever order they visit the leaves in.
   const Mesh soup = make_soup(1500, 5, 0.1f);
@@ -126,7 +162,7 @@ TEST(TunedPackets, EqualDistancesGoToTheLowerTriangleOnBothPaths) {
   }
 }
 
-TEST(TunedPackets, ATieAtTheEntryOfASiblingLeafGoesToTheLowerTriangle) {
+TEST_P(TunedPackets, ATieAtTheEntryOfASiblingLeafGoesToTheLowerTriangle) {
   // Pairs of axis-aligned triangles on the plane z = 0.5, one triangle a leaf: a small one and a
   // larger one around it (another box, so the build may put either first), the lower index
   // alternating between them from pair to pair. Rays along +z through the small one hit both at
@@ -179,7 +215,7 @@ TEST(TunedPackets, ATieAtTheEntryOfASiblingLeafGoesToTheLowerTriangle) {
   }
 }
 
-TEST(TunedPackets, ARayWithANanDirectionLeadingItsPacketChangesNoOtherHit) {
+TEST_P(TunedPackets, ARayWithANanDirectionLeadingItsPacketChangesNoOtherHit) {
   const Mesh mesh = make_soup(4000, 43, 0.08f);
   // A NaN x component has a clear sign bit, so the ray joins the camera rays going towards +x;
   // first in the batch, it leads their packet. It enters no box and hits nothing.
