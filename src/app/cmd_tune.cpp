@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "accel/kernel_isa.h"
 #include "app/cli_parse.h"
 #include "app/commands.h"
 #include "app/progress.h"
@@ -34,12 +35,13 @@ int run_tune(TuneArgs& a) {
   a.options.wavefront = a.scheduler == "wavefront";
   a.options.native_in_space = !a.tuned_only;
   fmt::print(
-      "tuning {} (objective {}, {} cameras x {} frames, {}x{}, {} spp, {} scheduler; {}{}) into "
-      "{}\n",
+      "tuning {} (objective {}, {} cameras x {} frames, {}x{}, {} spp, {} scheduler; {}{}; tuned "
+      "kernels {}) into {}\n",
       a.options.scene, a.objective, a.options.cameras, a.options.iterations, a.options.width,
       a.options.height, a.options.spp, a.scheduler,
       a.options.native_in_space ? "backend tuned|native + BVH" : "tuned BVH only",
-      a.options.work_sizes ? " + scheduler, tile_size, batch_size" : "", a.options.db_path);
+      a.options.work_sizes ? " + scheduler, tile_size, batch_size" : "",
+      bvh::to_string(bvh::kernel_isa()), a.options.db_path);
   ProgressBar bar("tune", static_cast<uint64_t>(a.options.cameras) * a.options.iterations,
                   !a.quiet && stderr_is_terminal());
   TuneReport report = run_tune_session(
