@@ -14,7 +14,7 @@ namespace tuneray::bvh {
 // The stream kernels twice: for AVX2, and for CPUs with AVX-512 (F, VL, BW, DQ), where Embree
 // runs its AVX-512 kernels too. The AVX-512 copy is the same source, still 256 bits wide, that
 // the compiler gives 32 vector registers (a stream's node step holds 16 vectors of per-packet
-// state) and mask registers; it traces camera rays up to 13 % faster (docs/bvh.md).
+// state) and mask registers; it traces camera rays in up to 13 % less time (docs/bvh.md).
 namespace avx2 {
 #include "accel/bvh_packet_kernel.inc"
 }  // namespace avx2
