@@ -3,9 +3,10 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
+
+#include "kernel_isa_cap.h"
 
 namespace tuneray::test {
 namespace {
@@ -15,19 +16,8 @@ using bvh::KernelIsa;
 // Runs `check` with TUNERAY_KERNEL_ISA set to `value` (unset for nullptr), then restores it.
 template <class Check>
 void with_cap(const char* value, Check check) {
-  const char* before = std::getenv("TUNERAY_KERNEL_ISA");
-  const std::string saved = before ? before : "";
-  if (value) {
-    setenv("TUNERAY_KERNEL_ISA", value, 1);
-  } else {
-    unsetenv("TUNERAY_KERNEL_ISA");
-  }
+  const KernelIsaCap cap(value);
   check();
-  if (before) {
-    setenv("TUNERAY_KERNEL_ISA", saved.c_str(), 1);
-  } else {
-    unsetenv("TUNERAY_KERNEL_ISA");
-  }
 }
 
 TEST(KernelIsa, UncappedItIsTheWidestTheCpuRuns) {

@@ -5,14 +5,15 @@
 // them, through TUNERAY_KERNEL_ISA.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "accel/kernel_isa.h"
 #include "accel/tuned_bvh.h"
 #include "batch_check.h"
+#include "kernel_isa_cap.h"
 #include "test_geometry.h"
 
 namespace tuneray::test {
@@ -20,28 +21,19 @@ namespace {
 
 using bvh::KernelIsa;
 
-// Sets TUNERAY_KERNEL_ISA to the test's copy for the test's duration; trees built meanwhile
-// select that copy's kernels.
+// Runs each test with TUNERAY_KERNEL_ISA set to its copy; trees built meanwhile select it.
 class TunedPackets : public ::testing::TestWithParam<KernelIsa> {
  protected:
   void SetUp() override {
     if (GetParam() == KernelIsa::kAvx512 && !bvh::cpu_has_avx512())
       GTEST_SKIP() << "this CPU has no AVX-512";
-    if (const char* before = std::getenv(kVariable)) saved_ = before;
-    setenv(kVariable, bvh::to_string(GetParam()), 1);
+    cap_.emplace(bvh::to_string(GetParam()));
     ASSERT_EQ(bvh::kernel_isa(), GetParam());
   }
-  void TearDown() override {
-    if (saved_.empty()) {
-      unsetenv(kVariable);
-    } else {
-      setenv(kVariable, saved_.c_str(), 1);
-    }
-  }
+  void TearDown() override { cap_.reset(); }
 
  private:
-  static constexpr const char* kVariable = "TUNERAY_KERNEL_ISA";
-  std::string saved_;
+  std::optional<KernelIsaCap> cap_;
 };
 
 INSTANTIATE_TEST_SUITE_P(KernelIsas, TunedPackets,
