@@ -62,13 +62,16 @@ std::vector<uint8_t> near_emitters(const DenoiseFeatures& f) {
   const int w = f.width, h = f.height;
   std::vector<uint8_t> kept(static_cast<size_t>(w) * h, 0);
   if (f.emitter.empty()) return kept;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (!f.emitter[static_cast<size_t>(y) * w + x]) continue;
-      for (int yy = std::max(0, y - 1); yy <= std::min(h - 1, y + 1); ++yy)
-        for (int xx = std::max(0, x - 1); xx <= std::min(w - 1, x + 1); ++xx)
-          kept[static_cast<size_t>(yy) * w + xx] = 1;
-    }
+  for_rows(h, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        bool near = false;
+        for (int yy = std::max(0, y - 1); yy <= std::min(h - 1, y + 1); ++yy)
+          for (int xx = std::max(0, x - 1); xx <= std::min(w - 1, x + 1); ++xx)
+            near = near || f.emitter[static_cast<size_t>(yy) * w + xx];
+        kept[static_cast<size_t>(y) * w + x] = near;
+      }
+  });
   return kept;
 }
 
@@ -336,19 +339,26 @@ NoisyImage noisy_image(const Film& film) {
   const size_t pixels = static_cast<size_t>(film.width()) * film.height();
   in.variance.resize(pixels);
   in.has_estimate.resize(pixels);
-  for (int y = 0; y < film.height(); ++y)
-    for (int x = 0; x < film.width(); ++x) {
-      size_t p = static_cast<size_t>(y) * film.width() + x;
-      uint32_t n = film.samples(x, y);
-      in.has_estimate[p] = n > 0;
-      in.variance[p] = n >= 2 ? static_cast<float>(film.variance_of_mean(x, y)) : -1.0f;
-    }
+  for_rows(film.height(), [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < film.width(); ++x) {
+        size_t p = static_cast<size_t>(y) * film.width() + x;
+        uint32_t n = film.samples(x, y);
+        in.has_estimate[p] = n > 0;
+        in.variance[p] = n >= 2 ? static_cast<float>(film.variance_of_mean(x, y)) : -1.0f;
+      }
+  });
   return in;
 }
 
-std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f,
-                                  const DenoiseParams& params, int first_kept,
-                                  const GuideWeights* guides) {
+namespace {
+
+// Runs the filter's iterations on `in`, calling level(i, remodulate) after iteration i (1 to
+// params.iterations), where remodulate(p) is pixel p of that level's image. Callers keep whole
+// levels or only the pixels they show.
+template <class Level>
+void run_iterations(const NoisyImage& in, const DenoiseFeatures& f, const DenoiseParams& params,
+                    const GuideWeights* guides, Level&& level) {
   const int w = in.color.width(), h = in.color.height();
   const size_t pixels = static_cast<size_t>(w) * h;
   check_features(f, w, h);
@@ -370,7 +380,7 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
     own_table.resize(table_halves(w, h));
   }
   Layer a(pixels);
-  for (size_t p = 0; p < pixels; ++p) {
+  for_pixels(w, h, [&](size_t p) {
     const Color& c = in.color.data()[p];
     const float d = demodulator(luminance(f.albedo[p]));
     a.r[p] = c.x * demodulator(f.albedo[p].x);
@@ -378,42 +388,71 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
     a.b[p] = c.z * demodulator(f.albedo[p].z);
     a.variance[p] = variance[p] * d * d;
     a.valid[p] = in.has_estimate[p] && !kept[p] ? 1.0f : 0.0f;
-  }
+  });
   // The change, remodulated: a pixel the filter left alone keeps its exact value; one without
   // an estimate gets the filtered light times its albedo.
-  auto remodulated = [&](const Layer& filtered_layer) {
-    Image out(w, h);
-    for (size_t p = 0; p < pixels; ++p) {
-      const Color& c = in.color.data()[p];
-      const Color& albedo = f.albedo[p];
-      const Color filtered(filtered_layer.r[p], filtered_layer.g[p], filtered_layer.b[p]);
-      const Color scale(std::max(albedo.x, kMinAlbedo), std::max(albedo.y, kMinAlbedo),
-                        std::max(albedo.z, kMinAlbedo));
-      const Color original(c.x * demodulator(albedo.x), c.y * demodulator(albedo.y),
-                           c.z * demodulator(albedo.z));
-      if (kept[p])
-        out.data()[p] = c;
-      else
-        out.data()[p] = in.has_estimate[p] ? c + (filtered - original) * scale : filtered * scale;
-    }
-    return out;
+  auto remodulated = [&](size_t p) {
+    const Color& c = in.color.data()[p];
+    if (kept[p]) return c;
+    const Color& albedo = f.albedo[p];
+    const Color filtered(a.r[p], a.g[p], a.b[p]);
+    const Color scale(std::max(albedo.x, kMinAlbedo), std::max(albedo.y, kMinAlbedo),
+                      std::max(albedo.z, kMinAlbedo));
+    const Color original(c.x * demodulator(albedo.x), c.y * demodulator(albedo.y),
+                         c.z * demodulator(albedo.z));
+    return in.has_estimate[p] ? c + (filtered - original) * scale : filtered * scale;
   };
 
-  std::vector<Image> levels;
-  if (first_kept <= 0) levels.push_back(in.color);
   Layer b(pixels);
   FloatPlane lum(pixels), noise(pixels);
   for (int i = 0; i < params.iterations; ++i) {
-    for (size_t p = 0; p < pixels; ++p) lum[p] = luminance(Color(a.r[p], a.g[p], a.b[p]));
+    for_pixels(w, h, [&](size_t p) { lum[p] = luminance(Color(a.r[p], a.g[p], a.b[p])); });
     blur_variance(a, w, h, params.sigma_luminance * params.sigma_luminance, noise);
     const uint16_t* table = guides ? guides->table(i) : own_table.data();
     if (!guides) build_guide_table(*guide, w, h, 1 << i, params, own_table.data());
     atrous_step(a, b, lum, noise, table, w, h, 1 << i, params);
     std::swap(a, b);
-    if (i + 1 >= first_kept) levels.push_back(remodulated(a));
+    level(i + 1, remodulated);
   }
+}
+
+}  // namespace
+
+std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f,
+                                  const DenoiseParams& params, int first_kept,
+                                  const GuideWeights* guides) {
+  const int w = in.color.width(), h = in.color.height();
+  std::vector<Image> levels;
+  if (first_kept <= 0) levels.push_back(in.color);
+  run_iterations(in, f, params, guides, [&](int i, auto&& remodulated) {
+    if (i < first_kept) return;
+    Image& out = levels.emplace_back(w, h);
+    for_pixels(w, h, [&](size_t p) { out.data()[p] = remodulated(p); });
+  });
   if (levels.empty()) levels.push_back(in.color);  // no iterations: the input itself
   return levels;
+}
+
+Image denoise_chosen(const NoisyImage& in, const DenoiseFeatures& f, const DenoiseParams& params,
+                     const std::vector<uint8_t>& strength, const GuideWeights* guides) {
+  const int w = in.color.width(), h = in.color.height();
+  if (strength.size() != static_cast<size_t>(w) * h)
+    throw std::invalid_argument("denoise: the strengths differ in size from the image");
+  Image out = in.color;  // strength 0
+  const uint8_t strongest =
+      strength.empty() ? 0 : *std::max_element(strength.begin(), strength.end());
+  if (strongest > params.iterations)
+    throw std::invalid_argument("denoise: strength " + std::to_string(strongest) +
+                                " is beyond the filter's iterations");
+  if (strongest == 0) return out;
+  DenoiseParams only_needed = params;
+  only_needed.iterations = strongest;
+  run_iterations(in, f, only_needed, guides, [&](int i, auto&& remodulated) {
+    for_pixels(w, h, [&](size_t p) {
+      if (strength[p] == i) out.data()[p] = remodulated(p);
+    });
+  });
+  return out;
 }
 
 Image denoise(const NoisyImage& in, const DenoiseFeatures& f, const DenoiseParams& params,

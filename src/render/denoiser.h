@@ -94,4 +94,13 @@ std::vector<Image> denoise_levels(const NoisyImage& in, const DenoiseFeatures& f
                                   const DenoiseParams& params, int first_kept = 0,
                                   const GuideWeights* guides = nullptr);
 
+// The image filtered per pixel to the strength `choice` names (0: the input, up to
+// params.iterations), the filter run only to the strongest chosen; each level's pixels are
+// written as the level is made, so no level is kept (render/denoiser_selection.h chooses).
+// Throws std::invalid_argument as denoise does, and when the choice differs in size from the
+// image or names a strength beyond the iterations.
+Image denoise_chosen(const NoisyImage& in, const DenoiseFeatures& features,
+                     const DenoiseParams& params, const std::vector<uint8_t>& choice,
+                     const GuideWeights* guides = nullptr);
+
 }  // namespace tuneray

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "math/rng.h"
 #include "render/light_sampler.h"
@@ -84,19 +86,24 @@ Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray, float sky
 // irradiance estimate (luminance x cosine / pdf, so bright lights count for more, as in the
 // image), and whether it reached its light.
 struct VisibilitySums {
-  static constexpr int kMost = kFeatureRaysPerSide * kFeatureRaysPerSide * kVisibilitySamplesPerRay;
+  static constexpr int kMost = [] {
+    int most = 0;
+    for (int side = 1; side <= kFeatureRaysPerSide; ++side)
+      most = std::max(most, side * side * visibility_samples_per_ray(side));
+    return most;
+  }();
   std::array<float, kMost> weight{}, visible{};  // visible: 1, occluded: 0
   int count = 0;
   int lit_rays = 0;  // feature rays that ended on a surface that reflects light
 };
 
-// kVisibilitySamplesPerRay samples of the direct light at the surface a feature ray ended on.
-void add_visibility(const LightSampler& lights, const Accel& accel, const Feature& at, Pcg32& rng,
-                    VisibilitySums& sums) {
+// `samples` samples of the direct light at the surface a feature ray ended on.
+void add_visibility(const LightSampler& lights, const Accel& accel, const Feature& at, int samples,
+                    Pcg32& rng, VisibilitySums& sums) {
   ++sums.lit_rays;
-  for (int k = 0; k < kVisibilitySamplesPerRay; ++k) {
+  for (int k = 0; k < samples; ++k) {
     // Stratified light choice: the ray's samples spread over the selection's CDF.
-    const float u_select = (k + rng.next_float()) / kVisibilitySamplesPerRay;
+    const float u_select = (k + rng.next_float()) / static_cast<float>(samples);
     const LightSample ls =
         lights.sample(at.position, u_select, {rng.next_float(), rng.next_float()});
     const float cosine = dot(ls.wi, at.normal);
@@ -137,7 +144,11 @@ void set_visibility(const VisibilitySums& sums, int rays, DenoiseFeatures& f, si
 
 }  // namespace
 
-DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
+DenoiseFeatures render_denoise_features(const TileRenderer& renderer, int rays_per_side) {
+  if (rays_per_side < 1 || rays_per_side > kFeatureRaysPerSide)
+    throw std::invalid_argument("denoiser features: " + std::to_string(rays_per_side) +
+                                " rays per pixel side (1 to " +
+                                std::to_string(kFeatureRaysPerSide) + ")");
   const RenderSettings& s = renderer.settings();
   const Scene& scene = renderer.scene();
   const Accel& accel = renderer.integrator().accel();
@@ -156,8 +167,9 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
     f.visibility.assign(pixels, 1.0f);
     f.visibility_variance.assign(pixels, 0.0f);
   }
-  constexpr int kSide = kFeatureRaysPerSide;
-  constexpr float kWeight = 1.0f / (kSide * kSide);
+  const int side = rays_per_side;
+  const float weight = 1.0f / static_cast<float>(side * side);
+  const int light_samples = visibility_samples_per_ray(side);
   tbb::parallel_for(tbb::blocked_range<int>(0, s.height), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < s.width; ++x) {
@@ -168,19 +180,19 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer) {
         // Seeded by the pixel: the guide is the same on every run and from every scheduler.
         Pcg32 rng(p, 0x9e3779b97f4a7c15ULL);
         VisibilitySums visibility;
-        for (int j = 0; j < kSide; ++j)
-          for (int i = 0; i < kSide; ++i) {
-            Vec2f at{x + (i + 0.5f) / kSide, y + (j + 0.5f) / kSide};
+        for (int j = 0; j < side; ++j)
+          for (int i = 0; i < side; ++i) {
+            Vec2f at{x + (i + 0.5f) / side, y + (j + 0.5f) / side};
             Feature one =
                 trace_feature(scene, accel, camera.generate_ray(at, {0.5f, 0.5f}), sky_distance);
-            albedo += one.albedo * kWeight;
-            position += one.position * kWeight;
+            albedo += one.albedo * weight;
+            position += one.position * weight;
             normal += one.normal;
             emitter = emitter || one.emitter;
             if (one.lit_surface && !lights.empty())
-              add_visibility(lights, accel, one, rng, visibility);
+              add_visibility(lights, accel, one, light_samples, rng, visibility);
           }
-        if (!lights.empty()) set_visibility(visibility, kSide * kSide, f, p);
+        if (!lights.empty()) set_visibility(visibility, side * side, f, p);
         f.albedo[p] = albedo;
         f.emitter[p] = emitter;
         f.position[p] = position;

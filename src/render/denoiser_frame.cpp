@@ -10,16 +10,22 @@ Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
   auto start = std::chrono::steady_clock::now();
   Image image;
   if (renderer.settings().quality.denoise) {
-    if (!features_) {
-      features_ = render_denoise_features(renderer);
+    const uint64_t samples = film.total_samples();
+    const double pixels = static_cast<double>(film.width()) * film.height();
+    const int rays_per_side = static_cast<double>(samples) >= kFineFeaturesSpp * pixels
+                                  ? kFeatureRaysPerSide
+                                  : kFirstFeatureRaysPerSide;
+    if (!features_ || rays_per_side > feature_rays_per_side_) {
+      features_ = render_denoise_features(renderer, rays_per_side);
+      feature_rays_per_side_ = rays_per_side;
+      guide_weights_.reset();
       if (GuideWeights::bytes_for(film.width(), film.height(), params_.iterations) <=
           kMaxGuideWeightBytes)
         guide_weights_.emplace(*features_, params_);
+      choice_.clear();  // chosen with the old guides
     }
     const GuideWeights* guides = guide_weights_ ? &*guide_weights_ : nullptr;
-    const uint64_t samples = film.total_samples();
-    if (static_cast<double>(samples) <
-        kFirstChoiceSpp * static_cast<double>(film.width()) * film.height()) {
+    if (static_cast<double>(samples) < kFirstChoiceSpp * pixels) {
       // Too few pixels have samples in both halves for a choice; the strongest is what the
       // choice gives where no pixel of the window has both.
       choice_.clear();

@@ -28,6 +28,7 @@ class FrameResolver {
   // Call after TileRenderer::set_camera: the kept features and strengths show the old view.
   void camera_moved() {
     features_.reset();
+    feature_rays_per_side_ = 0;
     guide_weights_.reset();
     choice_.clear();
   }
@@ -39,14 +40,20 @@ class FrameResolver {
   DenoiseParams params_;
   SelectionParams selection_;
   std::optional<DenoiseFeatures> features_;
+  // The features start from kFirstFeatureRaysPerSide rays a pixel side and are rendered again
+  // from kFeatureRaysPerSide once the film has this many samples per pixel on average: then the
+  // coarse guides' error would show, and the finer ones' cost is small beside the time spent.
+  static constexpr double kFineFeaturesSpp = 16;
+  int feature_rays_per_side_ = 0;
   // The guides' weights, computed with the features for every frame of the view unless they
   // would take more memory than this (then each filtering computes its own).
   static constexpr size_t kMaxGuideWeightBytes = size_t{640} << 20;
   std::optional<GuideWeights> guide_weights_;
   // The per-pixel strengths the halves chose, and the film's sample count then. Filtering both
   // halves costs twice the frame's own filtering, and the choice changes slowly with the
-  // samples, so it is renewed only once the film has kReselectGrowth times the samples.
-  static constexpr double kReselectGrowth = 1.5;
+  // samples, so it is renewed only once the film has kReselectGrowth times the samples (1.5
+  // until the twenty-sixth session; 2 won at equal time in `bench quality`, docs/quality.md).
+  static constexpr double kReselectGrowth = 2.0;
   // Below this many samples per pixel on average the strongest filter is used: at 2 spp each
   // half has one sample per pixel.
   static constexpr double kFirstChoiceSpp = 2;

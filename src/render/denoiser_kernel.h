@@ -54,6 +54,15 @@ inline void for_rows(int height, F&& rows) {
                     [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
 }
 
+// Calls visit(p) for every pixel, rows spread over all cores: every shown frame filters afresh,
+// and the per-pixel passes around the iterations, run serially, left the other core idle.
+template <class F>
+inline void for_pixels(int w, int h, F&& visit) {
+  for_rows(h, [&](int y0, int y1) {
+    for (size_t p = static_cast<size_t>(y0) * w; p < static_cast<size_t>(y1) * w; ++p) visit(p);
+  });
+}
+
 // Plane `v` at pixels [i, i + 8) where `mask` is set, 0 elsewhere (never read there); kFull:
 // every lane is set.
 template <bool kFull>

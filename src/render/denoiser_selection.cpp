@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "render/denoiser_kernel.h"
+
 namespace tuneray {
 
 namespace {
@@ -43,18 +45,20 @@ void window_sums(std::vector<double>& v, int w, int h, int r) {
     }
     std::copy(row.begin(), row.end(), line);
   }
-  std::vector<double> column(static_cast<size_t>(h));
-  for (int x = 0; x < w; ++x) {
-    auto at = [&](int y) -> double& { return v[static_cast<size_t>(y) * w + x]; };
-    double running = 0;
-    for (int y = 0; y < std::min(r, h); ++y) running += at(y);
-    for (int y = 0; y < h; ++y) {
-      if (y + r < h) running += at(y + r);
-      if (y - r - 1 >= 0) running -= at(y - r - 1);
-      column[static_cast<size_t>(y)] = running;
-    }
-    for (int y = 0; y < h; ++y) at(y) = column[static_cast<size_t>(y)];
+  // Columns a whole row at a time (the same additions per column, in the same order): walking
+  // each column down the image touched a new cache line at every step.
+  std::vector<double> out(v.size()), running(static_cast<size_t>(w), 0.0);
+  auto add_row = [&](int y, double sign) {
+    const double* line = v.data() + static_cast<size_t>(y) * w;
+    for (int x = 0; x < w; ++x) running[static_cast<size_t>(x)] += sign * line[x];
+  };
+  for (int y = 0; y < std::min(r, h); ++y) add_row(y, 1.0);
+  for (int y = 0; y < h; ++y) {
+    if (y + r < h) add_row(y + r, 1.0);
+    if (y - r - 1 >= 0) add_row(y - r - 1, -1.0);
+    std::copy(running.begin(), running.end(), out.begin() + static_cast<ptrdiff_t>(y) * w);
   }
+  v.swap(out);
 }
 
 }  // namespace
@@ -64,16 +68,18 @@ NoisyImage noisy_half_image(const Film& film, int half) {
   const int w = film.width(), h = film.height();
   NoisyImage out{Image(w, h), std::vector<float>(static_cast<size_t>(w) * h, -1.0f),
                  std::vector<uint8_t>(static_cast<size_t>(w) * h, 0)};
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t p = static_cast<size_t>(y) * w + x;
-      const uint32_t n = film.samples(x, y), n_half = film.half_samples(half, x, y);
-      if (n_half == 0) continue;
-      out.color.at(x, y) = film.half_sum(half, x, y) / static_cast<float>(n_half);
-      out.has_estimate[p] = 1;
-      // variance_of_mean x n is the sample variance; over n_half samples it is this.
-      if (n >= 2) out.variance[p] = static_cast<float>(film.variance_of_mean(x, y) * n / n_half);
-    }
+  denoise_detail::for_rows(h, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y) * w + x;
+        const uint32_t n = film.samples(x, y), n_half = film.half_samples(half, x, y);
+        if (n_half == 0) continue;
+        out.color.at(x, y) = film.half_sum(half, x, y) / static_cast<float>(n_half);
+        out.has_estimate[p] = 1;
+        // variance_of_mean x n is the sample variance; over n_half samples it is this.
+        if (n >= 2) out.variance[p] = static_cast<float>(film.variance_of_mean(x, y) * n / n_half);
+      }
+  });
   return out;
 }
 
@@ -109,16 +115,16 @@ std::vector<uint8_t> select_levels(const std::vector<Image>& levels_a, const Noi
   window_sums(counted, w, h, params.window_radius);
 
   std::vector<uint8_t> choice(pixels);
-  for (size_t p = 0; p < pixels; ++p) {
+  denoise_detail::for_pixels(w, h, [&](size_t p) {
     if (counted[p] <= 0) {
       choice[p] = static_cast<uint8_t>(levels - 1);
-      continue;
+      return;
     }
     size_t best = 0;
     for (size_t k = 1; k < levels; ++k)
       if (error[k][p] < error[best][p]) best = k;
     choice[p] = static_cast<uint8_t>(best);
-  }
+  });
   return choice;
 }
 
@@ -129,12 +135,14 @@ Image compose_levels(const std::vector<Image>& levels, const std::vector<uint8_t
   check_levels(levels, w, h, "compose");
   if (choice.size() != static_cast<size_t>(w) * h) fail("the choice differs in size");
   Image out(w, h);
-  for (size_t p = 0; p < choice.size(); ++p) {
-    const int k = choice[p] - first;
-    if (k < 0 || k >= static_cast<int>(levels.size()))
-      fail("level " + std::to_string(choice[p]) + " was not computed");
-    out.data()[p] = levels[static_cast<size_t>(k)].data()[p];
-  }
+  if (choice.empty()) return out;
+  const auto [lowest, highest] = std::minmax_element(choice.begin(), choice.end());
+  for (const int k : {int{*lowest}, int{*highest}})
+    if (k < first || k - first >= static_cast<int>(levels.size()))
+      fail("level " + std::to_string(k) + " was not computed");
+  denoise_detail::for_pixels(w, h, [&](size_t p) {
+    out.data()[p] = levels[static_cast<size_t>(choice[p] - first)].data()[p];
+  });
   return out;
 }
 
@@ -143,19 +151,6 @@ std::vector<uint8_t> choose_strength(const NoisyImage& half_a, const NoisyImage&
                                      const SelectionParams& selection, const GuideWeights* guides) {
   return select_levels(denoise_levels(half_a, features, params, 0, guides), half_a,
                        denoise_levels(half_b, features, params, 0, guides), half_b, selection);
-}
-
-Image denoise_chosen(const NoisyImage& in, const DenoiseFeatures& features,
-                     const DenoiseParams& params, const std::vector<uint8_t>& choice,
-                     const GuideWeights* guides) {
-  if (choice.size() != in.has_estimate.size()) fail("the choice differs in size");
-  const auto [lowest, highest] = std::minmax_element(choice.begin(), choice.end());
-  if (lowest == choice.end()) return in.color;  // an empty image
-  if (*highest > params.iterations)
-    fail("strength " + std::to_string(*highest) + " is beyond the filter's iterations");
-  DenoiseParams strongest = params;
-  strongest.iterations = *highest;
-  return compose_levels(denoise_levels(in, features, strongest, *lowest, guides), choice, *lowest);
 }
 
 Image denoise_cross_validated(const NoisyImage& full, const NoisyImage& half_a,

@@ -53,11 +53,7 @@ std::vector<uint8_t> choose_strength(const NoisyImage& half_a, const NoisyImage&
                                      const SelectionParams& selection = {},
                                      const GuideWeights* guides = nullptr);
 
-// The image filtered per pixel to the strength `choice` names (the filter runs only to the
-// strongest chosen). Throws as denoise and compose_levels do.
-Image denoise_chosen(const NoisyImage& in, const DenoiseFeatures& features,
-                     const DenoiseParams& params, const std::vector<uint8_t>& choice,
-                     const GuideWeights* guides = nullptr);
+// denoise_chosen (render/denoiser.h) shows the full image at the chosen strengths.
 
 // Both steps: the full image filtered per pixel to the strength its halves choose.
 Image denoise_cross_validated(const NoisyImage& full, const NoisyImage& half_a,

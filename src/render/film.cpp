@@ -1,5 +1,8 @@
 #include "render/film.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,12 +10,15 @@ namespace tuneray {
 
 Image Film::resolve() const {
   Image out(width(), height());
-  for (int y = 0; y < height(); ++y)
-    for (int x = 0; x < width(); ++x) {
-      const Pixel& p = pixel(x, y);
-      const uint32_t n = p.samples();
-      out.at(x, y) = n > 0 ? p.sum() / static_cast<float>(n) : Color(0.0f);
-    }
+  // Every shown frame resolves the whole film: on both cores, as the frame rendered.
+  tbb::parallel_for(tbb::blocked_range<int>(0, height()), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < width(); ++x) {
+        const Pixel& p = pixel(x, y);
+        const uint32_t n = p.samples();
+        out.at(x, y) = n > 0 ? p.sum() / static_cast<float>(n) : Color(0.0f);
+      }
+  });
   return out;
 }
 
