@@ -19,7 +19,8 @@ void run_shown_frames(const Scene& scene, const Accel& accel, const CameraDesc& 
   FrameResolver resolver;
   double t = 0, spp = 0;
   for (;;) {
-    const FrameResult frame = budget.render_frame(film);
+    const FrameResult frame =
+        budget.render_frame(film, settings.quality.denoise ? resolver.expected_ms() : 0.0);
     const Image image = resolver.resolve(renderer, film);
     t += frame.ms + (settings.quality.denoise ? resolver.last_ms() : 0.0);
     spp += frame.spp;

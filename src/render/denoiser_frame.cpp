@@ -1,5 +1,6 @@
 #include "render/denoiser_frame.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "render/denoiser_selection.h"
@@ -7,7 +8,11 @@
 namespace tuneray {
 
 Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
-  auto start = std::chrono::steady_clock::now();
+  auto ms_since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  };
+  const auto start = std::chrono::steady_clock::now();
+  double one_off_ms = 0;
   Image image;
   if (renderer.settings().quality.denoise) {
     const uint64_t samples = film.total_samples();
@@ -16,6 +21,7 @@ Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
                                   ? kFeatureRaysPerSide
                                   : kFirstFeatureRaysPerSide;
     if (!features_ || rays_per_side > feature_rays_per_side_) {
+      const auto guides_start = std::chrono::steady_clock::now();
       features_ = render_denoise_features(renderer, rays_per_side);
       feature_rays_per_side_ = rays_per_side;
       guide_weights_.reset();
@@ -23,6 +29,7 @@ Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
           kMaxGuideWeightBytes)
         guide_weights_.emplace(*features_, params_);
       choice_.clear();  // chosen with the old guides
+      one_off_ms = ms_since(guides_start);
     }
     const GuideWeights* guides = guide_weights_ ? &*guide_weights_ : nullptr;
     if (static_cast<double>(samples) < kFirstChoiceSpp * pixels) {
@@ -43,8 +50,11 @@ Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
   } else {
     image = film.resolve();
   }
-  last_ms_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  last_ms_ = ms_since(start);
+  const double showing_ms = std::max(0.0, last_ms_ - one_off_ms);
+  expected_ms_ = expected_ms_ > 0
+                     ? (1 - kExpectedWeight) * expected_ms_ + kExpectedWeight * showing_ms
+                     : showing_ms;
   return image;
 }
 

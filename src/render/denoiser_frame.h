@@ -35,6 +35,10 @@ class FrameResolver {
 
   // Time of the last resolve (features included when they were rendered) in ms.
   double last_ms() const { return last_ms_; }
+  // What the next resolve is expected to take, for a frame budget to set aside (0 before the
+  // first): a running mean of the resolves without the guides' one-off work, so the frames that
+  // renew the strength choice (about 2.5 filterings) are spread over the others.
+  double expected_ms() const { return expected_ms_; }
 
  private:
   DenoiseParams params_;
@@ -60,6 +64,9 @@ class FrameResolver {
   std::vector<uint8_t> choice_;
   uint64_t chosen_at_samples_ = 0;
   double last_ms_ = 0;
+  double expected_ms_ = 0;
+  // The running mean's weight of the newest resolve.
+  static constexpr double kExpectedWeight = 0.25;
 };
 
 }  // namespace tuneray

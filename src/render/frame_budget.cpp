@@ -65,7 +65,8 @@ double FrameBudgetRenderer::ms_per_spp() const {
                                                            : uniform_cost_.ms_per_spp;
 }
 
-FrameResult FrameBudgetRenderer::render_frame(Film& film) {
+FrameResult FrameBudgetRenderer::render_frame(Film& film, double reserved_ms) {
+  const double render_ms = frame_ms_ - std::max(0.0, reserved_ms);
   const RenderSettings& s = renderer_.settings();
   const double pixels = static_cast<double>(s.width) * s.height;
   auto start = std::chrono::steady_clock::now();
@@ -82,9 +83,9 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film) {
     // sample would make small passes look expensive and plan ever smaller ones.
     double fit;
     if (cost.ms_per_spp > 0) {
-      fit = (frame_ms_ - elapsed() - cost.overhead_ms) / cost.ms_per_spp;
+      fit = (render_ms - elapsed() - cost.overhead_ms) / cost.ms_per_spp;
     } else if (adaptive && uniform_cost_.ms_per_spp > 0) {
-      double uniform_fit = (frame_ms_ - elapsed()) / uniform_cost_.ms_per_spp;
+      double uniform_fit = (render_ms - elapsed()) / uniform_cost_.ms_per_spp;
       fit = std::min(kAdaptiveProbePass, uniform_fit);
     } else {
       fit = kFirstPass;

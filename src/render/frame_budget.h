@@ -22,7 +22,10 @@ class FrameBudgetRenderer {
   FrameBudgetRenderer(const TileRenderer& renderer, double frame_ms)
       : renderer_(renderer), frame_ms_(frame_ms) {}
 
-  FrameResult render_frame(Film& film);
+  // `reserved_ms`: the time the caller will spend on the frame after rendering it (the
+  // denoiser's filtering, FrameResolver::expected_ms); the passes plan to end that much before
+  // the budget, so the shown frame holds it. Every frame still gets one pass.
+  FrameResult render_frame(Film& film, double reserved_ms = 0);
   // Running estimate of rendering time per spp of the passes to come (adaptive ones once
   // adaptive sampling has started); 0 = not measured yet.
   double ms_per_spp() const;

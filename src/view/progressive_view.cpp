@@ -34,7 +34,10 @@ void ProgressiveView::restart() {
 }
 
 FrameResult ProgressiveView::render_frame() {
-  FrameResult frame = budget_->render_frame(film_);
+  // The shown frame is resolved after rendering (filtered when denoising): its time comes out
+  // of the same budget.
+  FrameResult frame =
+      budget_->render_frame(film_, settings_.quality.denoise ? resolver_.expected_ms() : 0.0);
   film_samples_ += static_cast<double>(frame.stats.samples);
   return frame;
 }

@@ -303,7 +303,9 @@ TEST(DenoiserSelection, FrameResolverRefinesItsGuidesOnceTheFilmHasSamples) {
   const Film early = film_of(1), late = film_of(16);
 
   FrameResolver resolver;
+  EXPECT_EQ(resolver.expected_ms(), 0.0);  // nothing to set aside before the first frame
   const Image first = resolver.resolve(renderer, early);
+  EXPECT_GT(resolver.expected_ms(), 0.0);
   const NoisyImage early_in = noisy_image(early);
   const Image coarse = denoise(early_in, render_denoise_features(renderer, 2));
   const Image fine = denoise(early_in, render_denoise_features(renderer, 4));

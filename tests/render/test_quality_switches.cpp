@@ -429,6 +429,24 @@ TEST(FrameBudget, TinyBudgetsAddPartialPassesThatCompleteARound) {
     for (int x = 0; x < s.width; ++x) ASSERT_EQ(film.samples(x, y), 1u) << x << "," << y;
 }
 
+// Time set aside for showing the frame (the denoiser's filtering) comes out of the budget: with
+// all of a 2 s budget set aside, a frame adds only the smallest pass (a tenth of the pixels)
+// once the cost is known, instead of two seconds of samples.
+TEST(FrameBudget, TimeSetAsideForShowingTheFrameComesOutOfTheBudget) {
+  Scene scene = load_scene("cornell");
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  RenderSettings s = small_settings();
+  s.quality.adaptive = false;
+  PcgSampler sampler(1);
+  TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
+  Film film(s.width, s.height);
+  FrameBudgetRenderer budget(renderer, 2000);
+  EXPECT_EQ(budget.render_frame(film, 2000).stats.samples, 300u);  // the first, unknown cost
+  for (int f = 0; f < 3; ++f) EXPECT_EQ(budget.render_frame(film, 2500).stats.samples, 120u);
+}
+
 // Adaptive frames keep every pixel's sample indices distinct: the image after the uniform
 // warm-up equals a plain render of the same spp.
 TEST(FrameBudget, AdaptiveWarmupEqualsUniformSampling) {
