@@ -45,8 +45,9 @@ class FrameResolver {
   SelectionParams selection_;
   std::optional<DenoiseFeatures> features_;
   // The features start from kFirstFeatureRaysPerSide rays a pixel side and are rendered again
-  // from kFeatureRaysPerSide once the film has this many samples per pixel on average: then the
-  // coarse guides' error would show, and the finer ones' cost is small beside the time spent.
+  // from kFeatureRaysPerSide once the film has this many samples per pixel on average: by then
+  // the coarse guides' error shows beside the noise, and the finer ones' cost is a smaller share
+  // of the time spent (docs/quality.md, "Twenty-sixth session").
   static constexpr double kFineFeaturesSpp = 16;
   int feature_rays_per_side_ = 0;
   // The guides' weights, computed with the features for every frame of the view unless they
