@@ -400,19 +400,34 @@ TEST(AdaptiveSampling, VarianceOfTheMeanMatchesTheSampleFormula) {
   EXPECT_NEAR(film.variance_of_mean(0, 0), 35.0 / 12.0, 1e-5);
 }
 
+// The built-in Cornell box rendered in uniform frames (no adaptive sampling) into `film`.
+struct UniformCornellFrames {
+  Scene scene = load_scene("cornell");
+  EmbreeNativeAccel accel;
+  RenderSettings s = [] {
+    RenderSettings settings = small_settings();
+    settings.quality.adaptive = false;
+    return settings;
+  }();
+  PcgSampler sampler{1};
+  TileRenderer renderer{scene, build_accel(), scene.cameras.at(0), s, sampler};
+  Film film{s.width, s.height};
+
+ private:
+  const EmbreeNativeAccel& build_accel() {
+    accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+                 scene.triangles.size()});
+    return accel;
+  }
+};
+
 // A budget far below one pass adds a partial pass per frame: a quarter of the pixels first
 // (no cost known yet), then a tenth, in row order, until every pixel has exactly one sample.
 TEST(FrameBudget, TinyBudgetsAddPartialPassesThatCompleteARound) {
-  Scene scene = load_scene("cornell");
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
-  RenderSettings s = small_settings();
-  s.quality.adaptive = false;
-  PcgSampler sampler(1);
-  TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
-  Film film(s.width, s.height);
-  FrameBudgetRenderer budget(renderer, 1e-6);
+  UniformCornellFrames frames;
+  const RenderSettings& s = frames.s;
+  Film& film = frames.film;
+  FrameBudgetRenderer budget(frames.renderer, 1e-6);
   const uint64_t pixels = static_cast<uint64_t>(s.width) * s.height;  // 1200
   EXPECT_EQ(budget.render_frame(film).stats.samples, 300u);
   EXPECT_EQ(film.samples(0, 0), 1u);
@@ -433,16 +448,9 @@ TEST(FrameBudget, TinyBudgetsAddPartialPassesThatCompleteARound) {
 // all of a 2 s budget set aside, a frame adds only the smallest pass (a tenth of the pixels)
 // once the cost is known, instead of two seconds of samples.
 TEST(FrameBudget, TimeSetAsideForShowingTheFrameComesOutOfTheBudget) {
-  Scene scene = load_scene("cornell");
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
-  RenderSettings s = small_settings();
-  s.quality.adaptive = false;
-  PcgSampler sampler(1);
-  TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
-  Film film(s.width, s.height);
-  FrameBudgetRenderer budget(renderer, 2000);
+  UniformCornellFrames frames;
+  Film& film = frames.film;
+  FrameBudgetRenderer budget(frames.renderer, 2000);
   EXPECT_EQ(budget.render_frame(film, 2000).stats.samples, 300u);  // the first, unknown cost
   for (int f = 0; f < 3; ++f) EXPECT_EQ(budget.render_frame(film, 2500).stats.samples, 120u);
 }
