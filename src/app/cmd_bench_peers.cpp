@@ -16,18 +16,23 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
   fmt::print("  {:>6} {:>10} {:>9}\n", "spp", "frame ms", "RMSE");
   for (const PeerPoint& p : r.embree)
     fmt::print("  {:>6} {:>10.1f} {:>9.5f}\n", p.spp, p.frame_ms, p.rmse);
-  fmt::print("tuneray ({} accel{}{}, default quality switches): {:.2f} ms per spp\n\n", o.accel,
+  fmt::print("tuneray ({} accel{}{}, default quality switches): {:.2f} ms per spp\n", o.accel,
              o.bvh.empty() ? "" : " ", o.bvh, r.ours_ms_per_spp);
+  fmt::print(
+      "tuneray's reference has noise of its own: RMSE {:.5f} ({:.5f} 8-bit) against the truth,\n"
+      "from its halves. Below, our errors without it (as the pathtracer's are without its\n"
+      "reference's), then as measured.\n\n",
+      r.reference_noise_rmse, r.reference_noise_rmse_ldr);
   fmt::print("{:>7} {:>11} {:>11} {:>11} {:>9} {:>11} {:>12}", "time s", "embree RMSE", "tuneray",
              "tuneray 8b", "spp", "ratio raw", "ratio 8-bit");
   if (o.denoise) fmt::print(" {:>14} {:>15}", "denoised raw", "denoised 8-bit");
   fmt::print("\n");
   for (const PeersRow& row : r.rows) {
     fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.5f} {:>9.1f} {:>11.3f} {:>12.3f}", row.time_s,
-               row.embree_rmse, row.ours_rmse, row.ours_rmse_ldr, row.ours_spp, row.ratio(),
-               row.ratio_ldr());
+               row.embree_rmse, row.raw.truth, row.ldr.truth, row.ours_spp, row.ratio(row.raw),
+               row.ratio(row.ldr));
     if (o.denoise)
-      fmt::print(" {:>14.3f} {:>15.3f}", row.denoised_ratio(), row.denoised_ratio_ldr());
+      fmt::print(" {:>14.3f} {:>15.3f}", row.ratio(row.denoised), row.ratio(row.denoised_ldr));
     fmt::print("\n");
   }
   fmt::print(
@@ -35,6 +40,19 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
       "8-bit: tuneray's image and reference through the pathtracer's output transform (clamp to\n"
       "[0,1], floor(255.01 x)/255), as the pathtracer's own numbers are. Denoised: the same\n"
       "runs with --denoise, the filtering counted as frame time (ratios to the pathtracer).\n");
+  fmt::print("\nAs measured against tuneray's reference (its noise included):\n");
+  fmt::print("{:>7} {:>11} {:>11} {:>11} {:>12}", "time s", "tuneray", "tuneray 8b", "ratio raw",
+             "ratio 8-bit");
+  if (o.denoise) fmt::print(" {:>14} {:>15}", "denoised raw", "denoised 8-bit");
+  fmt::print("\n");
+  for (const PeersRow& row : r.rows) {
+    fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.3f} {:>12.3f}", row.time_s, row.raw.measured,
+               row.ldr.measured, row.measured_ratio(row.raw), row.measured_ratio(row.ldr));
+    if (o.denoise)
+      fmt::print(" {:>14.3f} {:>15.3f}", row.measured_ratio(row.denoised),
+                 row.measured_ratio(row.denoised_ldr));
+    fmt::print("\n");
+  }
 }
 
 nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
@@ -53,27 +71,32 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
   }
   j["embree_reference"] = r.embree_reference;
   j["tuneray_reference"] = r.ours_reference;
+  j["tuneray_reference_noise_rmse"] = r.reference_noise_rmse;
+  j["tuneray_reference_noise_rmse_8bit"] = r.reference_noise_rmse_ldr;
   j["tuneray_ms_per_spp"] = r.ours_ms_per_spp;
   j["embree_frames"] = nlohmann::json::array();
   for (const PeerPoint& p : r.embree)
     j["embree_frames"].push_back({{"spp", p.spp}, {"frame_ms", p.frame_ms}, {"rmse", p.rmse}});
+  // "rmse" and "ratio": against the truth; "measured_...": against tuneray's reference.
+  auto add = [](nlohmann::json& row, const std::string& name, const PeersRow& r,
+                const OurError& e) {
+    row[name + "_rmse"] = e.truth;
+    row[name + "_ratio"] = r.ratio(e);
+    row[name + "_measured_rmse"] = e.measured;
+    row[name + "_measured_ratio"] = r.measured_ratio(e);
+  };
   j["rows"] = nlohmann::json::array();
-  for (const PeersRow& row : r.rows)
-    j["rows"].push_back({{"time_s", row.time_s},
-                         {"embree_rmse", row.embree_rmse},
-                         {"tuneray_rmse", row.ours_rmse},
-                         {"tuneray_rmse_8bit", row.ours_rmse_ldr},
-                         {"tuneray_spp", row.ours_spp},
-                         {"ratio", row.ratio()},
-                         {"ratio_8bit", row.ratio_ldr()}});
-  if (o.denoise)
-    for (size_t i = 0; i < r.rows.size(); ++i) {
-      const PeersRow& row = r.rows[i];
-      j["rows"][i]["denoised_rmse"] = row.denoised_rmse;
-      j["rows"][i]["denoised_rmse_8bit"] = row.denoised_rmse_ldr;
-      j["rows"][i]["denoised_ratio"] = row.denoised_ratio();
-      j["rows"][i]["denoised_ratio_8bit"] = row.denoised_ratio_ldr();
+  for (const PeersRow& row : r.rows) {
+    nlohmann::json out = {
+        {"time_s", row.time_s}, {"embree_rmse", row.embree_rmse}, {"tuneray_spp", row.ours_spp}};
+    add(out, "tuneray", row, row.raw);
+    add(out, "tuneray_8bit", row, row.ldr);
+    if (o.denoise) {
+      add(out, "denoised", row, row.denoised);
+      add(out, "denoised_8bit", row, row.denoised_ldr);
     }
+    j["rows"].push_back(out);
+  }
   return j;
 }
 

@@ -17,15 +17,17 @@ namespace tuneray {
 
 namespace {
 
-const char* kHeader = "{:<11} {:>8} {:>7} {:>7} {:>7} {:>7} {:>6} {:>6} {:>9} {:>7} {:>8}\n";
+const char* kHeader = "{:<11} {:>8} {:>7} {:>7} {:>7} {:>7} {:>6} {:>6} {:>9} {:>7} {:>7} {:>8}\n";
 
 void print_row(const QualityRow& r) {
   std::string ratio = r.baseline_rmse > 0 ? fmt::format("{:.3f}", r.rmse_vs_baseline()) : "-";
+  std::string exact =
+      r.exact_baseline_rmse > 0 ? fmt::format("{:.3f}", r.exact_rmse_vs_baseline()) : "-";
   fmt::print(fmt::runtime(kHeader), r.name, fmt::format("{:.2f}", r.ms_per_spp),
              fmt::format("{:.2f}", r.intersect), fmt::format("{:.2f}", r.shading),
              fmt::format("{:.2f}", r.shadow), fmt::format("{:.2f}", r.mrays_per_s),
              fmt::format("{:.1f}", r.spp.back()), fmt::format("{:.2f}", r.time_over_budget),
-             fmt::format("{:.5f}", r.rmse_at_budget), ratio, fmt::format("{:.5f}", r.bias));
+             fmt::format("{:.5f}", r.rmse_at_budget), ratio, exact, fmt::format("{:.5f}", r.bias));
   std::fflush(stdout);
 }
 
@@ -51,9 +53,11 @@ QualityHooks printing_hooks(const QualityBenchOptions& a, BarSlot bar) {
                  s.truth.spp, s.truth.render_ms / 1e3, s.truth.estimated_rmse);
     else
       fmt::print("truth {} (cached)\n", s.truth_path);
+    fmt::print("the truth's own noise: RMSE {:.5f} against the exact image (from its halves)\n",
+               s.truth_noise_rmse);
     fmt::print("frame budget {:.1f} ms, {} frames\n", s.frame_ms, a.frames);
     fmt::print(fmt::runtime(kHeader), "config", "ms/spp", "isect", "shade", "shadow", "Mray/s",
-               "spp", "t/T", "RMSE@T", "vs base", "bias");
+               "spp", "t/T", "RMSE@T", "vs base", "exact", "bias");
     std::fflush(stdout);
   };
   h.repeat_done = [a](const QualityScene& s, int rep) {
@@ -119,7 +123,11 @@ int run_bench_quality(const QualityBenchOptions& a) {
     fmt::print("\n");
   }
   if (!a.plot.empty()) write_plot_script(a.plot, scenes);
-  print_ratio_matrix("RMSE at equal time (frames x budget) / baseline's (median over repeats):",
+  print_ratio_matrix(
+      "RMSE at equal time (frames x budget) / baseline's (median over repeats), against the "
+      "exact image (the truth's own noise taken off both):",
+      ratio_matrix(scenes, &QualityRow::exact_rmse_at_budget));
+  print_ratio_matrix("The same as measured against the truth (its noise included):",
                      ratio_matrix(scenes, &QualityRow::rmse_at_budget));
   print_ratio_matrix("Time per spp / baseline's:", ratio_matrix(scenes, &QualityRow::ms_per_spp));
   return 0;

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 
 #include "image/io.h"
 #include "render/film.h"
@@ -14,6 +15,18 @@ uint64_t fnv1a(const std::string& text) {
   uint64_t h = 1469598103934665603ULL;
   for (unsigned char c : text) h = (h ^ c) * 1099511628211ULL;
   return h;
+}
+
+// Written aside and renamed, so an interrupted run never leaves a truncated cache entry.
+void write_cache_image(const std::string& path, const Image& image) {
+  const std::string partial = path + ".partial.exr";
+  write_image(partial, image);
+  std::filesystem::rename(partial, path);
+}
+
+bool halves_cached(const std::string& dir, const GroundTruthKey& key) {
+  return std::filesystem::exists(ground_truth_half_path(dir, key, 0)) &&
+         std::filesystem::exists(ground_truth_half_path(dir, key, 1));
 }
 }  // namespace
 
@@ -48,7 +61,7 @@ Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scen
   GroundTruthInfo& out = info ? *info : local;
   out = {};
   std::string path = ground_truth_path(dir, key);
-  if (std::filesystem::exists(path)) {
+  if (std::filesystem::exists(path) && (!key.require_halves || halves_cached(dir, key))) {
     Image cached = read_image(path);
     if (cached.width() == key.width && cached.height() == key.height) return cached;
   }
@@ -69,11 +82,33 @@ Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scen
   out.rendered = true;
   Image image = film.resolve();
   std::filesystem::create_directories(dir);
-  // Written aside and renamed, so an interrupted run never leaves a truncated cache entry.
-  std::string partial = path + ".partial.exr";
-  write_image(partial, image);
-  std::filesystem::rename(partial, path);
+  // The halves first: a truth found without them is one from before they were kept.
+  for (int half : {0, 1})
+    write_cache_image(ground_truth_half_path(dir, key, half), film.resolve_half(half));
+  write_cache_image(path, image);
   return image;
+}
+
+std::string ground_truth_half_path(const std::string& dir, const GroundTruthKey& key, int half) {
+  if (half != 0 && half != 1) throw std::invalid_argument("ground truth: the halves are 0 and 1");
+  std::string path = ground_truth_path(dir, key);
+  return path.substr(0, path.size() - 4) + ".half" + std::to_string(half) + ".exr";
+}
+
+std::optional<GroundTruthHalves> ground_truth_halves(const std::string& dir,
+                                                     const GroundTruthKey& key) {
+  if (!halves_cached(dir, key)) return std::nullopt;
+  GroundTruthHalves halves;
+  for (int half : {0, 1}) {
+    const std::string path = ground_truth_half_path(dir, key, half);
+    Image image = read_image(path);
+    if (image.width() != key.width || image.height() != key.height)
+      throw std::runtime_error(path + ": a " + std::to_string(image.width()) + "x" +
+                               std::to_string(image.height()) + " image where the truth is " +
+                               std::to_string(key.width) + "x" + std::to_string(key.height));
+    (half == 0 ? halves.a : halves.b) = std::move(image);
+  }
+  return halves;
 }
 
 }  // namespace tuneray

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "accel/accel.h"
@@ -21,6 +22,9 @@ struct GroundTruthKey {
   int max_bounces = 3;
   int spp = 4096;         // samples per pixel (the most, when until_rmse > 0)
   double until_rmse = 0;  // > 0: stop once Film::estimated_rmse() is below it
+  // Not part of the name: render again a cached truth written without its halves (before they
+  // were kept), so that its own noise can be estimated (ground_truth_halves).
+  bool require_halves = false;
 };
 
 // `dir`/truth-<hash>.exr; the hash covers every field of the key.
@@ -43,9 +47,24 @@ struct GroundTruthInfo {
 // nothing itself: the command line turns this into its progress bar.
 using TruthProgress = std::function<void(int spp_added, double estimated_rmse)>;
 
-// Reads the cached image, or renders it and writes it.
+// Reads the cached image, or renders it and writes it with its two halves (the film's even and
+// odd samples) beside it.
 Image ground_truth(const std::string& dir, const GroundTruthKey& key, const Scene& scene,
                    const Accel& accel, GroundTruthInfo* info = nullptr,
                    const TruthProgress& progress = {});
+
+// `dir`/truth-<hash>.half0.exr and .half1.exr.
+std::string ground_truth_half_path(const std::string& dir, const GroundTruthKey& key, int half);
+
+// A truth's halves, each the mean of half its samples, independent of the other: what
+// reference_noise_mse (image/metrics.h) estimates the truth's own noise from.
+struct GroundTruthHalves {
+  Image a, b;
+};
+
+// The cached halves; nullopt when either file is missing (a cache written before halves were
+// kept). Throws std::runtime_error naming the file when one is unreadable or of another size.
+std::optional<GroundTruthHalves> ground_truth_halves(const std::string& dir,
+                                                     const GroundTruthKey& key);
 
 }  // namespace tuneray

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "accel/factory.h"
@@ -134,6 +135,7 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
   key.height = o.peer.height;
   key.max_bounces = o.peer.max_path_length;
   key.spp = o.reference_spp;
+  key.require_halves = true;
   result.ours_reference = ground_truth_path(o.truth_dir, key);
   if (!std::filesystem::exists(result.ours_reference))
     say(fmt::format("rendering tuneray's {}-spp reference ...", o.reference_spp));
@@ -142,6 +144,13 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
     throw std::runtime_error(result.embree_reference + ": not a " + std::to_string(o.peer.width) +
                              "x" + std::to_string(o.peer.height) + " image");
   Image ours_truth_ldr = embree_output_transform(ours_truth);
+  const std::optional<GroundTruthHalves> halves = ground_truth_halves(o.truth_dir, key);
+  if (!halves) throw std::runtime_error(result.ours_reference + ": its halves are missing");
+  const double noise_mse = reference_noise_mse(halves->a, halves->b);
+  const double noise_mse_ldr =
+      reference_noise_mse(embree_output_transform(halves->a), embree_output_transform(halves->b));
+  result.reference_noise_rmse = std::sqrt(noise_mse);
+  result.reference_noise_rmse_ldr = std::sqrt(noise_mse_ldr);
 
   // The pathtracer's frames at 1, 2, 4, ... spp until one frame takes the longest time, and at
   // most half the reference's samples (see peer_rmse_against_truth).
@@ -211,11 +220,19 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
     PeersRow row;
     row.time_s = o.times_s[i];
     row.embree_rmse = rmse_at_time(embree_time, embree_error, 1000.0 * o.times_s[i]);
-    row.ours_rmse = median(ours_rmse[i]);
-    row.ours_rmse_ldr = median(ours_ldr[i]);
     row.ours_spp = median(ours_spp[i]);
-    row.denoised_rmse = median(denoised[i]);  // 0 without the denoiser column
-    row.denoised_rmse_ldr = median(denoised_ldr[i]);
+    // The correction is monotonic, so it commutes with the median.
+    auto column = [](const std::vector<double>& measured, double noise) {
+      OurError e;
+      if (measured.empty()) return e;  // the denoiser's column, not run
+      e.measured = median(measured);
+      e.truth = rmse_without_reference_noise(e.measured, noise);
+      return e;
+    };
+    row.raw = column(ours_rmse[i], noise_mse);
+    row.ldr = column(ours_ldr[i], noise_mse_ldr);
+    row.denoised = column(denoised[i], noise_mse);
+    row.denoised_ldr = column(denoised_ldr[i], noise_mse_ldr);
     result.rows.push_back(row);
   }
   return result;

@@ -35,18 +35,29 @@ struct PeerPoint {
   double rmse = 0;      // of its 8-bit output against the truth, estimated from its reference
 };
 
+// One of our columns at one time. Our reference has noise of its own, independent of our runs'
+// (its own seed and sampler), so our RMSE against it reads sqrt(rmse^2 + its mean squared error)
+// against the truth: hardly more than the truth for a raw frame, but for a denoised frame, whose
+// error is far below a raw frame's, the reference's noise can be most of what is measured. The
+// pathtracer's error is measured against its truth (peer_rmse_against_truth); ours is too, by
+// removing the reference's noise as its halves estimate it (image/metrics.h). Both are kept.
+struct OurError {
+  double measured = 0;  // RMSE against our reference; 0 when the column was not run
+  double truth = 0;     // the same without the reference's own noise
+};
+
 struct PeersRow {
   double time_s = 0;
   double embree_rmse = 0;
-  double ours_rmse = 0;      // our linear image against our linear reference
-  double ours_rmse_ldr = 0;  // both passed through the pathtracer's output transform
-  double ours_spp = 0;       // samples per pixel we had at that time (median)
-  // The same with the denoiser on (its filtering counted as frame time); 0 when not run.
-  double denoised_rmse = 0, denoised_rmse_ldr = 0;
-  double ratio() const { return ours_rmse / embree_rmse; }
-  double ratio_ldr() const { return ours_rmse_ldr / embree_rmse; }
-  double denoised_ratio() const { return denoised_rmse / embree_rmse; }
-  double denoised_ratio_ldr() const { return denoised_rmse_ldr / embree_rmse; }
+  double ours_spp = 0;  // samples per pixel we had at that time (median)
+  OurError raw;         // our linear image against our linear reference
+  OurError ldr;         // both passed through the pathtracer's output transform
+  // The same with the denoiser on (its filtering counted as frame time).
+  OurError denoised, denoised_ldr;
+  // Against the truth, as the pathtracer's error is: the comparison the targets are judged by.
+  double ratio(const OurError& ours) const { return ours.truth / embree_rmse; }
+  // Against our reference as measured (higher: the reference's noise included).
+  double measured_ratio(const OurError& ours) const { return ours.measured / embree_rmse; }
 };
 
 struct PeersResult {
@@ -55,6 +66,9 @@ struct PeersResult {
   std::string embree_reference, ours_reference;  // cache files
   std::vector<PeerPoint> embree;
   double ours_ms_per_spp = 0;  // median over repeats, over the whole run
+  // Our reference's own noise as RMSE against the truth (linear, and through the pathtracer's
+  // output transform), from its halves.
+  double reference_noise_rmse = 0, reference_noise_rmse_ldr = 0;
   std::vector<PeersRow> rows;
 };
 
@@ -67,8 +81,8 @@ PeersResult run_peers_bench(const PeersBenchOptions& options, const PeersProgres
 // the first n of its N-spp reference's samples: the two share noise and their difference
 // underestimates the frame's error. For independent samples E|mean_n - mean_N|^2 =
 // s^2 (1/n - 1/N) while the error against the truth is s^2/n, so this divides by sqrt(1 - n/N).
-// Our runs use a seed of their own and stay uncorrected: against a reference with noise of its
-// own, our error reads up to sqrt(1 + n/N) too high, never too low. Throws for n >= N.
+// Our runs use a seed of their own: their error has the reference's noise added instead
+// (OurError). Throws for n >= N.
 double peer_rmse_against_truth(double rmse_against_reference, int spp, int reference_spp);
 
 // Where the pathtracer's reference is cached for these options.

@@ -3,7 +3,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 
 #include "accel/factory.h"
 #include "bench/quality_configs.h"
@@ -136,8 +139,13 @@ QualityScene run_quality_scene(const QualityBenchOptions& a, const std::string& 
 
   GroundTruthKey key{spec,          camera,      a.width,           a.height,
                      a.max_bounces, a.truth_spp, a.truth_until_rmse};
+  key.require_halves = true;
   out.truth_path = ground_truth_path(a.truth_dir, key);
   Image truth = ground_truth(a.truth_dir, key, scene, *accel, &out.truth, hooks.truth_progress);
+  const std::optional<GroundTruthHalves> halves = ground_truth_halves(a.truth_dir, key);
+  if (!halves) throw std::runtime_error(out.truth_path + ": its halves are missing");
+  const double noise_mse = reference_noise_mse(halves->a, halves->b);
+  out.truth_noise_rmse = std::sqrt(noise_mse);
   out.truth_spp = out.truth.rendered ? out.truth.spp : a.truth_spp;
 
   RenderSettings base;
@@ -175,15 +183,20 @@ QualityScene run_quality_scene(const QualityBenchOptions& a, const std::string& 
     if (a.repeats > 1 && hooks.repeat_done) hooks.repeat_done(out, rep);
   }
 
-  double base_rmse = 0;
+  double base_rmse = 0, exact_base_rmse = 0;
   for (size_t i = 0; i < chosen.size(); ++i) {
     const RenderSettings& s = chosen[i].settings;
     const Scene& used = *chosen[i].scene;
     QualityRow r = summarize_runs(chosen[i].name, runs[i], out.frame_ms * a.frames);
+    r.exact_rmse_at_budget = rmse_without_reference_noise(r.rmse_at_budget, noise_mse);
     measure_phases(used, *accel, camera, s, r);
     if (s.quality.biased()) r.bias = measure_bias(used, *accel, camera, s, a.bias_spp);
-    if (r.name == "baseline") base_rmse = r.rmse_at_budget;
+    if (r.name == "baseline") {
+      base_rmse = r.rmse_at_budget;
+      exact_base_rmse = r.exact_rmse_at_budget;
+    }
     r.baseline_rmse = base_rmse;
+    r.exact_baseline_rmse = exact_base_rmse;
     out.rows.push_back(r);
     if (hooks.row) hooks.row(out.rows.back());
   }

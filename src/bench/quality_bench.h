@@ -57,6 +57,15 @@ struct QualityRow {
   double rmse_vs_baseline() const {
     return baseline_rmse > 0 ? rmse_at_budget / baseline_rmse : 0.0;
   }
+  // The truth has noise of its own, independent of the runs', which adds to every measured RMSE
+  // in quadrature (image/metrics.h): little to the baseline's, a good share to a row whose error
+  // is a few times lower. These are against the exact image: the truth's noise, as its halves
+  // estimate it, taken off (QualityScene::truth_noise_rmse).
+  double exact_rmse_at_budget = 0;
+  double exact_baseline_rmse = 0;
+  double exact_rmse_vs_baseline() const {
+    return exact_baseline_rmse > 0 ? exact_rmse_at_budget / exact_baseline_rmse : 0.0;
+  }
 };
 
 // Medians over the repeats, frame by frame, and per-run figures reduced to their medians;
@@ -76,7 +85,8 @@ struct QualityScene {
   size_t one_texel_candidates = 0, one_texel_collapsed = 0;
   std::string truth_path;
   GroundTruthInfo truth;
-  int truth_spp = 0;  // rendered, or the requested count when read from the cache
+  double truth_noise_rmse = 0;  // the truth's own error against the exact image, from its halves
+  int truth_spp = 0;            // rendered, or the requested count when read from the cache
   double frame_ms = 0;
   std::vector<QualityRow> rows;
   std::vector<SweepPoint> sweep;

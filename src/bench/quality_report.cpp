@@ -40,6 +40,8 @@ nlohmann::ordered_json quality_scene_json(const QualityScene& scene) {
                     {"rmse_at_budget", r.rmse_at_budget},
                     {"time_over_budget", r.time_over_budget},
                     {"rmse_vs_baseline", r.rmse_vs_baseline()},
+                    {"exact_rmse_at_budget", r.exact_rmse_at_budget},
+                    {"exact_rmse_vs_baseline", r.exact_rmse_vs_baseline()},
                     {"bias", r.bias}});
   nlohmann::ordered_json sweep = nlohmann::ordered_json::array();
   for (const SweepPoint& p : scene.sweep)
@@ -51,6 +53,7 @@ nlohmann::ordered_json quality_scene_json(const QualityScene& scene) {
           {"one_texel_collapsed", scene.one_texel_collapsed},
           {"truth", scene.truth_path},
           {"truth_spp", scene.truth_spp},
+          {"truth_noise_rmse", scene.truth_noise_rmse},
           {"frame_ms", scene.frame_ms},
           {"configs", rows},
           {"sweep", sweep}};

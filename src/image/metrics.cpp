@@ -56,4 +56,14 @@ ErrorMetrics compare_images(const Image& a, const Image& b) {
   return m;
 }
 
+double reference_noise_mse(const Image& half_a, const Image& half_b) {
+  return compare_images(half_a, half_b).mse / 4.0;
+}
+
+double rmse_without_reference_noise(double rmse, double noise_mse) {
+  if (!(rmse >= 0) || !(noise_mse >= 0) || !std::isfinite(rmse) || !std::isfinite(noise_mse))
+    throw std::invalid_argument("rmse_without_reference_noise: needs finite non-negative values");
+  return std::sqrt(std::max(0.0, rmse * rmse - noise_mse));
+}
+
 }  // namespace tuneray

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace tuneray {
 
@@ -17,6 +18,20 @@ Image Film::resolve() const {
         const Pixel& p = pixel(x, y);
         const uint32_t n = p.samples();
         out.at(x, y) = n > 0 ? p.sum() / static_cast<float>(n) : Color(0.0f);
+      }
+  });
+  return out;
+}
+
+Image Film::resolve_half(int half) const {
+  if (half != 0 && half != 1) throw std::invalid_argument("film: the halves are 0 and 1");
+  Image out(width(), height());
+  tbb::parallel_for(tbb::blocked_range<int>(0, height()), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < width(); ++x) {
+        const Pixel& p = pixel(x, y);
+        const uint32_t n = p.half_samples[half];
+        out.at(x, y) = n > 0 ? p.half_sum[half] / static_cast<float>(n) : Color(0.0f);
       }
   });
   return out;

@@ -86,6 +86,9 @@ class Film {
 
   // The current estimate (sum / count per pixel).
   Image resolve() const;
+  // One half film's estimate (0: even sample indices, 1: odd); black where it has no samples.
+  // Throws std::invalid_argument for another half.
+  Image resolve_half(int half) const;
   void clear();
 
  private:

@@ -176,6 +176,9 @@ TEST(PeersBench, TinyRunAgainstTheRealPathtracer) {
   ASSERT_FALSE(r.skipped) << r.reason;
   ASSERT_TRUE(std::filesystem::exists(r.embree_reference));
   ASSERT_TRUE(std::filesystem::exists(r.ours_reference));
+  // A 64-spp reference of a 32x24 image is visibly noisy; its halves say how much.
+  EXPECT_GT(r.reference_noise_rmse, 0.001);
+  EXPECT_GT(r.reference_noise_rmse_ldr, 0);
   ASSERT_GE(r.embree.size(), 2u);
   for (size_t i = 0; i < r.embree.size(); ++i) {
     EXPECT_EQ(r.embree[i].spp, 1 << i);
@@ -185,16 +188,24 @@ TEST(PeersBench, TinyRunAgainstTheRealPathtracer) {
   EXPECT_LT(r.embree.back().rmse, r.embree.front().rmse);
   ASSERT_EQ(r.rows.size(), 2u);
   for (const PeersRow& row : r.rows) {
-    EXPECT_TRUE(std::isfinite(row.ratio()) && row.ratio() > 0);
-    EXPECT_TRUE(std::isfinite(row.ratio_ldr()) && row.ratio_ldr() > 0);
-    EXPECT_TRUE(std::isfinite(row.denoised_ratio()) && row.denoised_ratio() > 0);
-    EXPECT_TRUE(std::isfinite(row.denoised_ratio_ldr()) && row.denoised_ratio_ldr() > 0);
+    EXPECT_TRUE(std::isfinite(row.ratio(row.raw)) && row.ratio(row.raw) > 0);
+    // The reference's noise comes off every column, and only it: the exact relation.
+    for (const OurError* e : {&row.raw, &row.denoised}) {
+      EXPECT_LE(e->truth, e->measured);
+      EXPECT_NEAR(
+          e->truth * e->truth + r.reference_noise_rmse * r.reference_noise_rmse,
+          std::max(e->measured * e->measured, r.reference_noise_rmse * r.reference_noise_rmse),
+          1e-12);
+    }
+    EXPECT_TRUE(std::isfinite(row.ratio(row.ldr)) && row.ratio(row.ldr) > 0);
+    EXPECT_TRUE(std::isfinite(row.ratio(row.denoised)) && row.ratio(row.denoised) > 0);
+    EXPECT_TRUE(std::isfinite(row.ratio(row.denoised_ldr)) && row.ratio(row.denoised_ldr) > 0);
     EXPECT_GT(row.ours_spp, 0);
   }
   auto written = std::filesystem::last_write_time(r.embree_reference);
   o.denoise = false;
   PeersResult again = run_peers_bench(o);
-  EXPECT_EQ(again.rows.front().denoised_rmse, 0.0);  // the column was not run
+  EXPECT_EQ(again.rows.front().denoised.measured, 0.0);  // the column was not run
   EXPECT_EQ(std::filesystem::last_write_time(again.embree_reference), written);
   EXPECT_EQ(again.embree.front().rmse, r.embree.front().rmse);  // same seeds, same image
 }

@@ -3,6 +3,7 @@
 // hooks' order, and the truth cache on a second run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "bench/quality_bench.h"
@@ -57,6 +58,8 @@ TEST(QualityAblation, RowsRelateToTheirRepeatsAndTheBaseline) {
   EXPECT_EQ(s.truth.spp, 32);
   EXPECT_EQ(s.truth_spp, 32);
   EXPECT_TRUE(std::filesystem::exists(s.truth_path));
+  EXPECT_GT(s.truth_noise_rmse, 0);  // 32 spp: a noisy truth, and its halves say so
+  EXPECT_LT(s.truth_noise_rmse, s.rows.at(0).rmse_at_budget);
   ASSERT_EQ(s.rows.size(), 4u);
   const double base = s.rows[0].rmse_at_budget;
   EXPECT_GT(base, 0);
@@ -71,6 +74,12 @@ TEST(QualityAblation, RowsRelateToTheirRepeatsAndTheBaseline) {
     for (size_t f = 1; f < 3; ++f) EXPECT_GT(r.time_ms[f], r.time_ms[f - 1]);
     EXPECT_EQ(r.baseline_rmse, base);
     EXPECT_EQ(r.rmse_vs_baseline(), r.rmse_at_budget / base);
+    // The truth's own noise comes off in quadrature, the same for every row.
+    EXPECT_NEAR(
+        r.exact_rmse_at_budget * r.exact_rmse_at_budget + s.truth_noise_rmse * s.truth_noise_rmse,
+        std::max(r.rmse_at_budget * r.rmse_at_budget, s.truth_noise_rmse * s.truth_noise_rmse),
+        1e-12);
+    EXPECT_EQ(r.exact_baseline_rmse, s.rows[0].exact_rmse_at_budget);
     EXPECT_GT(r.ms_per_spp, 0);
     EXPECT_GE(r.intersect, 0);
   }

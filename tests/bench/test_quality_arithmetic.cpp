@@ -110,6 +110,10 @@ TEST(QualityArithmetic, JsonRowsCarryTheRatioToTheBaseline) {
   QualityRow after = row("clamp", 0.1, 4);
   after.baseline_rmse = 0.4;
   after.bias = 0.01;
+  // Against the exact image (run_quality_scene fills these in from the truth's noise).
+  after.exact_rmse_at_budget = 0.05;
+  after.exact_baseline_rmse = 0.2;
+  s.truth_noise_rmse = 0.3;
   s.rows = {before, base, after};
   s.sweep = {{"tile", 16, 2.5}};
   nlohmann::ordered_json j = quality_scene_json(s);
@@ -121,6 +125,9 @@ TEST(QualityArithmetic, JsonRowsCarryTheRatioToTheBaseline) {
   EXPECT_EQ(j["configs"][1]["rmse_vs_baseline"], 1.0);
   EXPECT_EQ(j["configs"][2]["rmse_vs_baseline"], 0.25);
   EXPECT_EQ(j["configs"][2]["bias"], 0.01);
+  EXPECT_EQ(j["configs"][2]["exact_rmse_vs_baseline"], 0.25);
+  EXPECT_EQ(j["configs"][1]["exact_rmse_vs_baseline"], 0.0);  // not filled in
+  EXPECT_EQ(j["truth_noise_rmse"], 0.3);
   EXPECT_EQ(j["sweep"][0]["mode"], "tile");
   EXPECT_EQ(j["sweep"][0]["size"], 16);
   std::vector<std::string> keys;
@@ -128,7 +135,8 @@ TEST(QualityArithmetic, JsonRowsCarryTheRatioToTheBaseline) {
   EXPECT_EQ(keys, (std::vector<std::string>{
                       "config", "ms_per_spp", "intersect_ms_per_spp", "shading_ms_per_spp",
                       "shadow_ms_per_spp", "mrays_per_s", "spp", "time_ms", "rmse", "rmse_repeats",
-                      "rmse_at_budget", "time_over_budget", "rmse_vs_baseline", "bias"}));
+                      "rmse_at_budget", "time_over_budget", "rmse_vs_baseline",
+                      "exact_rmse_at_budget", "exact_rmse_vs_baseline", "bias"}));
 }
 
 TEST(QualityArithmetic, PlotDataHasOneBlockPerRow) {

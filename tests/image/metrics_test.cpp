@@ -9,6 +9,27 @@
 namespace tuneray {
 namespace {
 
+TEST(Metrics, ReferenceNoiseIsAQuarterOfTheHalvesSquaredDifference) {
+  Image a(2, 1), b(2, 1);
+  a.at(0, 0) = Color(0.5f, 0.5f, 0.5f);
+  b.at(0, 0) = Color(0.5f, 0.5f, 0.3f);
+  a.at(1, 0) = Color(0.0f, 0.2f, 0.0f);
+  b.at(1, 0) = Color(0.0f, 0.0f, 0.0f);
+  // Two differences of 0.2 over six values: mse 0.08 / 6, a quarter of it.
+  EXPECT_NEAR(reference_noise_mse(a, b), 0.08 / 6 / 4, 1e-9);
+  EXPECT_THROW(reference_noise_mse(a, Image(1, 1)), std::invalid_argument);
+}
+
+TEST(Metrics, RmseWithoutReferenceNoiseSubtractsInQuadrature) {
+  EXPECT_DOUBLE_EQ(rmse_without_reference_noise(0.5, 0.09), 0.4);
+  EXPECT_DOUBLE_EQ(rmse_without_reference_noise(0.5, 0.0), 0.5);
+  // Measured below the reference's own noise (chance): nothing of ours is left, not a NaN.
+  EXPECT_EQ(rmse_without_reference_noise(0.1, 0.02), 0.0);
+  EXPECT_THROW(rmse_without_reference_noise(-0.1, 0.0), std::invalid_argument);
+  EXPECT_THROW(rmse_without_reference_noise(0.1, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(rmse_without_reference_noise(INFINITY, 0.0), std::invalid_argument);
+}
+
 TEST(Metrics, OneChannelOffCountsChannelsSeparately) {
   const ErrorMetrics m = compare_images(Image(1, 1, Color(1, 0, 0)), Image(1, 1, Color(0)));
   EXPECT_DOUBLE_EQ(m.mse, 1.0 / 3.0);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "image/metrics.h"
 #include "render/film.h"
@@ -34,6 +35,43 @@ TEST(Film, EstimatedRmseMatchesTheMeasuredError) {
     double measured = compare_images(film.resolve(), reference.resolve()).rmse;
     EXPECT_NEAR(measured / estimated, 1.0, 0.1) << "seed " << seed;
   }
+}
+
+// The same numbers a third way: the reference's noise from its two half films
+// (reference_noise_mse), which is what `bench peers` takes off our errors; an image's RMSE
+// against the truth is then its measured RMSE less that, and its own estimate says what it is.
+TEST(Film, HalvesEstimateTheReferenceNoiseThatComesOffTheMeasuredError) {
+  Scene scene = load_scene("furnace_ggx");
+  RenderSettings s;
+  s.width = 96;  // the halves give one squared difference per value: enough values to average
+  s.height = 72;
+  s.seed = 1000;
+  Film reference = render_film(scene, s, 256);
+  const double from_halves =
+      std::sqrt(reference_noise_mse(reference.resolve_half(0), reference.resolve_half(1)));
+  EXPECT_NEAR(from_halves / reference.estimated_rmse(), 1.0, 0.06);
+  for (uint64_t seed : {1, 2, 3}) {
+    s.seed = seed;
+    Film film = render_film(scene, s, 64);
+    const double measured = compare_images(film.resolve(), reference.resolve()).rmse;
+    const double truth = rmse_without_reference_noise(measured, from_halves * from_halves);
+    EXPECT_LT(truth, 0.95 * measured);  // the reference's noise is a quarter of the image's
+    EXPECT_NEAR(truth / film.estimated_rmse(), 1.0, 0.1) << "seed " << seed;
+  }
+}
+
+TEST(Film, HalvesAreTheEvenAndOddSamples) {
+  Film film(2, 1);
+  film.add_sample(0, 0, Color(1, 2, 3), 0);
+  film.add_sample(0, 0, Color(3, 2, 1), 1);
+  film.add_sample(0, 0, Color(5, 6, 7), 2);
+  film.add_sample(1, 0, Color(4, 4, 4), 1);
+  const Image even = film.resolve_half(0), odd = film.resolve_half(1);
+  EXPECT_EQ(even.at(0, 0), Color(3, 4, 5));
+  EXPECT_EQ(odd.at(0, 0), Color(3, 2, 1));
+  EXPECT_EQ(even.at(1, 0), Color(0.0f));  // no even sample yet
+  EXPECT_EQ(odd.at(1, 0), Color(4, 4, 4));
+  EXPECT_THROW(film.resolve_half(2), std::invalid_argument);
 }
 
 TEST(Film, EstimatedRmseOfAConstantImageIsZero) {
