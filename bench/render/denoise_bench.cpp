@@ -83,6 +83,8 @@ void BM_NoisyImageFromFilm(benchmark::State& state) {
 }
 BENCHMARK(BM_NoisyImageFromFilm)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The guides' pass on the built-in Cornell box: from scratch at state.range(0) rays a pixel side,
+// or (state.range(1) = 1) the 4x4 refinement of 2x2 guides, as FrameResolver renders it.
 void BM_DenoiseFeaturesCornell(benchmark::State& state) {
   Scene scene = make_cornell_scene();
   EmbreeNativeAccel accel;
@@ -91,9 +93,18 @@ void BM_DenoiseFeaturesCornell(benchmark::State& state) {
   RenderSettings settings;
   PcgSampler sampler(1);
   TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, sampler);
-  for (auto _ : state) benchmark::DoNotOptimize(render_denoise_features(renderer));
+  const int side = static_cast<int>(state.range(0));
+  const bool refine = state.range(1) != 0;
+  const DenoiseFeatures coarse = render_denoise_features(renderer, kFirstFeatureRaysPerSide);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(render_denoise_features(renderer, side, refine ? &coarse : nullptr));
 }
-BENCHMARK(BM_DenoiseFeaturesCornell)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DenoiseFeaturesCornell)
+    ->Args({kFirstFeatureRaysPerSide, 0})
+    ->Args({kFeatureRaysPerSide, 0})
+    ->Args({kFeatureRaysPerSide, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace tuneray

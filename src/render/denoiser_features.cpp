@@ -50,6 +50,7 @@ struct Feature {
   // with `geometric_normal` (facing the viewer) it places a lit surface's shadow rays.
   bool lit_surface = false;
   Vec3f position{0.0f}, geometric_normal{0.0f};
+  bool sky = false;
 };
 
 Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray, float sky_distance) {
@@ -57,7 +58,7 @@ Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray, float sky
   for (int bounce = 0;; ++bounce) {
     Hit hit;
     if (!accel.intersect(ray, hit))
-      return {tint, -ray.dir, false, false, ray.org + ray.dir * sky_distance};
+      return {tint, -ray.dir, false, false, ray.org + ray.dir * sky_distance, Vec3f(0.0f), true};
     SurfaceInteraction si = make_interaction(scene, hit);
     Vec3f n = si.shading.n;
     if (dot(n, ray.dir) > 0) n = -n;
@@ -82,6 +83,33 @@ Feature trace_feature(const Scene& scene, const Accel& accel, Ray ray, float sky
   }
 }
 
+// What a guide sample (one feature ray's, or a pixel's mean of them) shows of the surface.
+struct SurfaceView {
+  const Color& albedo;
+  const Vec3f& normal;
+  const Vec3f& position;
+  bool sky;  // then the position is far along the ray, on no plane
+};
+
+// Whether two guide samples show the same surface, so that rays between them would most likely
+// too: the same albedo and normal and, unless both see the sky, the same plane.
+bool same_surface(const SurfaceView& a, const SurfaceView& b) {
+  constexpr float kAlbedo = 1e-3f, kNormalCosine = 0.999f, kPlaneSine = 1e-3f;
+  const Color d = a.albedo - b.albedo;
+  if (std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) > kAlbedo) return false;
+  if (dot(a.normal, b.normal) < kNormalCosine) return false;
+  if (a.sky || b.sky) return a.sky == b.sky;
+  const Vec3f between = b.position - a.position;
+  return std::abs(dot(between, a.normal)) <= kPlaneSine * length(between);
+}
+
+// Whether two feature rays of one pixel saw the same thing.
+bool same_feature(const Feature& a, const Feature& b) {
+  return a.emitter == b.emitter && a.lit_surface == b.lit_surface &&
+         same_surface({a.albedo, a.normal, a.position, a.sky},
+                      {b.albedo, b.normal, b.position, b.sky});
+}
+
 // A pixel's next-event samples for the visibility guide: each one's weight, its unshadowed
 // irradiance estimate (luminance x cosine / pdf, so bright lights count for more, as in the
 // image), and whether it reached its light.
@@ -94,7 +122,12 @@ struct VisibilitySums {
   }();
   std::array<float, kMost> weight{}, visible{};  // visible: 1, occluded: 0
   int count = 0;
-  int lit_rays = 0;  // feature rays that ended on a surface that reflects light
+  int lit_rays = 0;     // feature rays that ended on a surface that reflects light
+  bool mixed() const {  // some samples reached their light and some did not
+    for (int i = 1; i < count; ++i)
+      if (visible[i] != visible[0]) return true;
+    return false;
+  }
 };
 
 // `samples` samples of the direct light at the surface a feature ray ended on.
@@ -142,9 +175,38 @@ void set_visibility(const VisibilitySums& sums, int rays, DenoiseFeatures& f, si
       total > 0 ? static_cast<float>(surfaces * surfaces * spread / (total * total)) : 0.0f;
 }
 
+// An edge that crosses a pixel between its rays and its border shows in none of its rays, but
+// its neighbour across the edge sees the other side: pixels whose features differ from a
+// neighbour's are marked as detail too.
+// `sky`: 1 where all of the pixel's rays saw the sky (its positions are far along the rays, on no
+// plane).
+void mark_edges_between_pixels(DenoiseFeatures& f, const std::vector<uint8_t>& sky) {
+  const int w = f.width, h = f.height;
+  auto same = [&](size_t p, size_t q) {
+    constexpr float kVisibility = 1e-3f;
+    if (f.emitter[p] != f.emitter[q]) return false;
+    if (!f.visibility.empty() && std::abs(f.visibility[p] - f.visibility[q]) > kVisibility)
+      return false;
+    return same_surface({f.albedo[p], f.normal[p], f.position[p], sky[p] != 0},
+                        {f.albedo[q], f.normal[q], f.position[q], sky[q] != 0});
+  };
+  std::vector<uint8_t> edge(f.detail.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y) * w + x;
+        if ((x + 1 < w && !same(p, p + 1)) || (x > 0 && !same(p, p - 1)) ||
+            (y + 1 < h && !same(p, p + w)) || (y > 0 && !same(p, p - w)))
+          edge[p] = 1;
+      }
+  });
+  for (size_t p = 0; p < edge.size(); ++p) f.detail[p] = f.detail[p] || edge[p];
+}
+
 }  // namespace
 
-DenoiseFeatures render_denoise_features(const TileRenderer& renderer, int rays_per_side) {
+DenoiseFeatures render_denoise_features(const TileRenderer& renderer, int rays_per_side,
+                                        const DenoiseFeatures* coarse) {
   if (rays_per_side < 1 || rays_per_side > kFeatureRaysPerSide)
     throw std::invalid_argument("denoiser features: " + std::to_string(rays_per_side) +
                                 " rays per pixel side (1 to " +
@@ -153,30 +215,42 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer, int rays_p
   const Scene& scene = renderer.scene();
   const Accel& accel = renderer.integrator().accel();
   const Camera& camera = renderer.camera();
-  DenoiseFeatures f;
-  f.width = s.width;
-  f.height = s.height;
   const size_t pixels = static_cast<size_t>(s.width) * s.height;
-  f.albedo.assign(pixels, Color(0.0f));
-  f.normal.assign(pixels, Vec3f(0.0f));
-  f.emitter.assign(pixels, 0);
-  f.position.assign(pixels, Vec3f(0.0f));
-  const float sky_distance = kSkyDistance * std::max(1.0f, scene.bounds().diagonal());
   const LightSampler& lights = renderer.integrator().lights();
-  if (!lights.empty()) {
-    f.visibility.assign(pixels, 1.0f);
-    f.visibility_variance.assign(pixels, 0.0f);
+  if (coarse &&
+      (coarse->width != s.width || coarse->height != s.height || coarse->detail.size() != pixels ||
+       coarse->visibility.size() != (lights.empty() ? 0 : pixels)))
+    throw std::invalid_argument("denoiser features: the coarse features are of another view");
+  DenoiseFeatures f;
+  if (coarse) {
+    f = *coarse;
+  } else {
+    f.width = s.width;
+    f.height = s.height;
+    f.albedo.assign(pixels, Color(0.0f));
+    f.normal.assign(pixels, Vec3f(0.0f));
+    f.emitter.assign(pixels, 0);
+    f.position.assign(pixels, Vec3f(0.0f));
+    f.detail.assign(pixels, 1);
+    if (!lights.empty()) {
+      f.visibility.assign(pixels, 1.0f);
+      f.visibility_variance.assign(pixels, 0.0f);
+    }
   }
+  const float sky_distance = kSkyDistance * std::max(1.0f, scene.bounds().diagonal());
   const int side = rays_per_side;
   const float weight = 1.0f / static_cast<float>(side * side);
   const int light_samples = visibility_samples_per_ray(side);
+  std::vector<uint8_t> sky(coarse ? 0 : pixels, 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, s.height), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < s.width; ++x) {
+        size_t p = static_cast<size_t>(y) * s.width + x;
+        if (!f.detail[p]) continue;  // the coarse rays all agreed
         Color albedo(0.0f);
         Vec3f normal(0.0f), position(0.0f);
-        bool emitter = false;
-        size_t p = static_cast<size_t>(y) * s.width + x;
+        bool emitter = false, detail = false;
+        Feature first;
         // Seeded by the pixel: the guide is the same on every run and from every scheduler.
         Pcg32 rng(p, 0x9e3779b97f4a7c15ULL);
         VisibilitySums visibility;
@@ -185,6 +259,10 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer, int rays_p
             Vec2f at{x + (i + 0.5f) / side, y + (j + 0.5f) / side};
             Feature one =
                 trace_feature(scene, accel, camera.generate_ray(at, {0.5f, 0.5f}), sky_distance);
+            if (i == 0 && j == 0)
+              first = one;
+            else
+              detail = detail || !same_feature(first, one);
             albedo += one.albedo * weight;
             position += one.position * weight;
             normal += one.normal;
@@ -196,11 +274,14 @@ DenoiseFeatures render_denoise_features(const TileRenderer& renderer, int rays_p
         f.albedo[p] = albedo;
         f.emitter[p] = emitter;
         f.position[p] = position;
+        f.detail[p] = side == 1 || detail || visibility.mixed();  // one ray cannot tell
+        if (!coarse) sky[p] = first.sky && !detail;
         float len = length(normal);
         // Opposite normals in one pixel (a thin sheet's edge) cancel: any unit vector will do.
         f.normal[p] = len > 1e-6f ? normal / len : Vec3f(0.0f, 0.0f, 1.0f);
       }
   });
+  if (!coarse) mark_edges_between_pixels(f, sky);
   return f;
 }
 

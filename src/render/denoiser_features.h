@@ -35,6 +35,10 @@ struct DenoiseFeatures {
   // camera sees the sky. Two surfaces with the same albedo and normal at different depths (a
   // box's face before a wall) differ here. Empty: no guide.
   std::vector<Vec3f> position;
+  // 1 where the pixel's feature rays disagree (an edge, a texture, a shadow's edge, a light
+  // partly covering it) or its features differ from a neighbour's (an edge between its rays and
+  // its border): only there can more rays change the features.
+  std::vector<uint8_t> detail;
 };
 
 // Camera rays per pixel side for the features (antialiased edges), stratified. With 2 x 2 the
@@ -52,8 +56,13 @@ inline constexpr int visibility_samples_per_ray(int rays_per_side) {
 }
 
 // The features of the renderer's scene, camera and resolution, from rays_per_side^2 camera rays
-// a pixel (1 to kFeatureRaysPerSide; std::invalid_argument otherwise).
+// a pixel (1 to kFeatureRaysPerSide; std::invalid_argument otherwise). With `coarse` (features
+// of the same view from fewer rays), only its detail pixels are traced again; the others keep the
+// coarse features, since rays that all agree with each other and with the neighbours' leave
+// nothing to refine (docs/quality.md, "Twenty-seventh session").
+// std::invalid_argument when `coarse` is of another size.
 DenoiseFeatures render_denoise_features(const TileRenderer& renderer,
-                                        int rays_per_side = kFeatureRaysPerSide);
+                                        int rays_per_side = kFeatureRaysPerSide,
+                                        const DenoiseFeatures* coarse = nullptr);
 
 }  // namespace tuneray

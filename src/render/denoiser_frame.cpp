@@ -22,7 +22,9 @@ Image FrameResolver::resolve(const TileRenderer& renderer, const Film& film) {
                                   : kFirstFeatureRaysPerSide;
     if (!features_ || rays_per_side > feature_rays_per_side_) {
       const auto guides_start = std::chrono::steady_clock::now();
-      features_ = render_denoise_features(renderer, rays_per_side);
+      // Finer guides only where the coarse ones' rays disagreed.
+      features_ =
+          render_denoise_features(renderer, rays_per_side, features_ ? &*features_ : nullptr);
       feature_rays_per_side_ = rays_per_side;
       guide_weights_.reset();
       if (GuideWeights::bytes_for(film.width(), film.height(), params_.iterations) <=

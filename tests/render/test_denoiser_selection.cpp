@@ -319,7 +319,8 @@ TEST(DenoiserSelection, FrameResolverRefinesItsGuidesOnceTheFilmHasSamples) {
   EXPECT_GT(differ_from_fine, 0u);  // the two guides filter differently here
 
   const Image refined = resolver.resolve(renderer, late);
-  const DenoiseFeatures fine_features = render_denoise_features(renderer, 4);
+  const DenoiseFeatures coarse_features = render_denoise_features(renderer, 2);
+  const DenoiseFeatures fine_features = render_denoise_features(renderer, 4, &coarse_features);
   const Image expected = denoise_chosen(
       noisy_image(late), fine_features, {},
       choose_strength(noisy_half_image(late, 0), noisy_half_image(late, 1), fine_features));
@@ -330,6 +331,56 @@ TEST(DenoiserSelection, FrameResolverRefinesItsGuidesOnceTheFilmHasSamples) {
     }
   EXPECT_THROW(render_denoise_features(renderer, 0), std::invalid_argument);
   EXPECT_THROW(render_denoise_features(renderer, kFeatureRaysPerSide + 1), std::invalid_argument);
+}
+
+// Finer guides from coarse ones trace only the pixels whose coarse rays disagreed or that differ
+// from a neighbour: those come out as from scratch, the others keep the coarse features, and the
+// pixels the finer rays see differently are among the traced ones (but at the image's border).
+TEST(DenoiserSelection, FinerGuidesAreTracedOnlyWhereTheCoarseRaysDisagreed) {
+  const CornellWithAccel cornell;
+  RenderSettings s;
+  s.width = 80;
+  s.height = 60;
+  PcgSampler sampler(1);
+  TileRenderer renderer(cornell.scene, cornell.accel, cornell.scene.cameras.at(0), s, sampler);
+  const DenoiseFeatures coarse = render_denoise_features(renderer, 2);
+  const DenoiseFeatures fine = render_denoise_features(renderer, 4);
+  const DenoiseFeatures refined = render_denoise_features(renderer, 4, &coarse);
+  const size_t pixels = coarse.albedo.size();
+  ASSERT_EQ(coarse.detail.size(), pixels);
+  ASSERT_FALSE(coarse.visibility.empty());
+  size_t traced = 0, changed = 0, changed_untraced = 0;
+  for (size_t p = 0; p < pixels; ++p) {
+    const DenoiseFeatures& want = coarse.detail[p] ? fine : coarse;
+    traced += coarse.detail[p];
+    ASSERT_EQ(refined.albedo[p], want.albedo[p]) << p;
+    ASSERT_EQ(refined.normal[p], want.normal[p]) << p;
+    ASSERT_EQ(refined.position[p], want.position[p]) << p;
+    ASSERT_EQ(refined.visibility[p], want.visibility[p]) << p;
+    ASSERT_EQ(refined.emitter[p], want.emitter[p]) << p;
+    const Color d = fine.albedo[p] - coarse.albedo[p];
+    const bool differs = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) > 0.02f ||
+                         std::abs(fine.visibility[p] - coarse.visibility[p]) > 0.1f;
+    changed += differs;
+    // An edge in the strip between the image's border and its first rays shows in no pixel.
+    const size_t x = p % s.width, y = p / s.width;
+    const bool border = x == 0 || y == 0 || x + 1 == static_cast<size_t>(s.width) ||
+                        y + 1 == static_cast<size_t>(s.height);
+    changed_untraced += differs && !coarse.detail[p] && !border;
+  }
+  EXPECT_GT(traced, 0u);
+  EXPECT_LT(traced, pixels / 2);  // walls, floor and boxes' faces are flat and evenly coloured
+  EXPECT_GT(changed, 0u);
+  EXPECT_EQ(changed_untraced, 0u);
+
+  RenderSettings other = s;
+  other.width = 81;
+  TileRenderer wider(cornell.scene, cornell.accel, cornell.scene.cameras.at(0), other, sampler);
+  EXPECT_THROW(render_denoise_features(wider, 4, &coarse), std::invalid_argument);
+  // One ray a pixel cannot tell where more would differ: every pixel is traced again.
+  const DenoiseFeatures single = render_denoise_features(renderer, 1);
+  EXPECT_EQ(std::count(single.detail.begin(), single.detail.end(), 1),
+            static_cast<ptrdiff_t>(pixels));
 }
 
 }  // namespace tuneray
