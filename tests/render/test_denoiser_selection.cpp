@@ -265,14 +265,14 @@ TEST(DenoiserSelection, BadInputIsRefused) {
   NoisyImage in = known_variance(Image(kW, kH, Color(0.2f)), 0.01f);
   NoisyImage other = known_variance(Image(kW + 1, kH), 0.01f);
   const std::vector<Image> levels = denoise_levels(in, f, {});
-  EXPECT_EQ(levels.size(), 6u);  // raw and five iterations
+  EXPECT_EQ(levels.size(), 5u);  // raw and four iterations
   EXPECT_THROW(select_levels(levels, in, levels, other), std::invalid_argument);
   EXPECT_THROW(select_levels(levels, in, {levels[0]}, in), std::invalid_argument);
   EXPECT_THROW(select_levels({}, in, {}, in), std::invalid_argument);
   SelectionParams negative;
   negative.window_radius = -1;
   EXPECT_THROW(select_levels(levels, in, levels, in, negative), std::invalid_argument);
-  std::vector<uint8_t> choice(static_cast<size_t>(kW) * kH, 6);  // beyond five iterations
+  std::vector<uint8_t> choice(static_cast<size_t>(kW) * kH, 5);  // beyond four iterations
   EXPECT_THROW(denoise_chosen(in, f, {}, choice), std::invalid_argument);
   EXPECT_THROW(compose_levels(levels, choice), std::invalid_argument);
   EXPECT_THROW(denoise_chosen(in, f, {}, std::vector<uint8_t>(3, 0)), std::invalid_argument);
