@@ -216,19 +216,19 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
     embree_error.push_back(result.embree[i].rmse);
   }
   result.ours_ms_per_spp = median(ours_ms_per_spp);
+  // The correction is monotonic, so it commutes with the median.
+  auto column = [](const std::vector<double>& measured, double noise) {
+    OurError e;
+    if (measured.empty()) return e;  // the denoiser's column, not run
+    e.measured = median(measured);
+    e.truth = rmse_without_reference_noise(e.measured, noise);
+    return e;
+  };
   for (size_t i = 0; i < o.times_s.size(); ++i) {
     PeersRow row;
     row.time_s = o.times_s[i];
     row.embree_rmse = rmse_at_time(embree_time, embree_error, 1000.0 * o.times_s[i]);
     row.ours_spp = median(ours_spp[i]);
-    // The correction is monotonic, so it commutes with the median.
-    auto column = [](const std::vector<double>& measured, double noise) {
-      OurError e;
-      if (measured.empty()) return e;  // the denoiser's column, not run
-      e.measured = median(measured);
-      e.truth = rmse_without_reference_noise(e.measured, noise);
-      return e;
-    };
     row.raw = column(ours_rmse[i], noise_mse);
     row.ldr = column(ours_ldr[i], noise_mse_ldr);
     row.denoised = column(denoised[i], noise_mse);

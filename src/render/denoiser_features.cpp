@@ -190,17 +190,16 @@ void mark_edges_between_pixels(DenoiseFeatures& f, const std::vector<uint8_t>& s
     return same_surface({f.albedo[p], f.normal[p], f.position[p], sky[p] != 0},
                         {f.albedo[q], f.normal[q], f.position[q], sky[q] != 0});
   };
-  std::vector<uint8_t> edge(f.detail.size(), 0);
+  // `same` reads no detail flag, so each pixel's flag is set in place.
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y != r.end(); ++y)
       for (int x = 0; x < w; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
         if ((x + 1 < w && !same(p, p + 1)) || (x > 0 && !same(p, p - 1)) ||
             (y + 1 < h && !same(p, p + w)) || (y > 0 && !same(p, p - w)))
-          edge[p] = 1;
+          f.detail[p] = 1;
       }
   });
-  for (size_t p = 0; p < edge.size(); ++p) f.detail[p] = f.detail[p] || edge[p];
 }
 
 }  // namespace

@@ -6,35 +6,32 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace tuneray {
 
-Image Film::resolve() const {
+template <typename Part>
+Image Film::resolve_each(Part part) const {
   Image out(width(), height());
-  // Every shown frame resolves the whole film: on both cores, as the frame rendered.
   tbb::parallel_for(tbb::blocked_range<int>(0, height()), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < width(); ++x) {
-        const Pixel& p = pixel(x, y);
-        const uint32_t n = p.samples();
-        out.at(x, y) = n > 0 ? p.sum() / static_cast<float>(n) : Color(0.0f);
+        const auto [sum, n] = part(pixel(x, y));
+        out.at(x, y) = n > 0 ? sum / static_cast<float>(n) : Color(0.0f);
       }
   });
   return out;
 }
 
+Image Film::resolve() const {
+  return resolve_each([](const Pixel& p) { return std::pair{p.sum(), p.samples()}; });
+}
+
 Image Film::resolve_half(int half) const {
   if (half != 0 && half != 1) throw std::invalid_argument("film: the halves are 0 and 1");
-  Image out(width(), height());
-  tbb::parallel_for(tbb::blocked_range<int>(0, height()), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y < rows.end(); ++y)
-      for (int x = 0; x < width(); ++x) {
-        const Pixel& p = pixel(x, y);
-        const uint32_t n = p.half_samples[half];
-        out.at(x, y) = n > 0 ? p.half_sum[half] / static_cast<float>(n) : Color(0.0f);
-      }
+  return resolve_each([half](const Pixel& p) {
+    return std::pair{p.half_sum[half], p.half_samples[half]};
   });
-  return out;
 }
 
 double Film::variance_of_mean(int x, int y) const {

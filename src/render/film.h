@@ -110,6 +110,10 @@ class Film {
   static_assert(sizeof(Pixel) == 64);
   Pixel& pixel(int x, int y) { return pixels_[static_cast<size_t>(y) * width_ + x]; }
   const Pixel& pixel(int x, int y) const { return pixels_[static_cast<size_t>(y) * width_ + x]; }
+  // Each pixel's sum / count, as `part(pixel)` gives them (black without samples), on all cores:
+  // every shown frame resolves the whole film. Defined in film.cpp, its only user.
+  template <typename Part>
+  Image resolve_each(Part part) const;
 
   int width_, height_;
   std::vector<Pixel> pixels_;

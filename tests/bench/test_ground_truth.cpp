@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <optional>
 
-#include "accel/embree_native.h"
 #include "bench/ground_truth.h"
+#include "common/scene_with_accel.h"
 #include "common/temp_dir.h"
 #include "image/io.h"
 #include "image/metrics.h"
@@ -15,16 +15,6 @@
 
 namespace tuneray {
 namespace {
-
-// A built-in scene with its native BVH built.
-struct SceneWithAccel {
-  explicit SceneWithAccel(const char* spec) : scene(load_scene(spec)) {
-    accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-                 scene.triangles.size()});
-  }
-  Scene scene;
-  EmbreeNativeAccel accel;
-};
 
 TEST(GroundTruth, PathCoversEveryFieldOfTheKey) {
   Scene scene = load_scene("cornell");
@@ -44,7 +34,7 @@ TEST(GroundTruth, PathCoversEveryFieldOfTheKey) {
 
 TEST(GroundTruth, RendersInPassesThenReadsTheCache) {
   testing::TempDir dir;
-  SceneWithAccel built("cornell");
+  testing::SceneWithNativeAccel built(load_scene("cornell"));
   const Scene& scene = built.scene;
   const Accel& accel = built.accel;
   GroundTruthKey key{"cornell", scene.cameras[0], 16, 12, 3, 40, 0};
@@ -71,7 +61,7 @@ TEST(GroundTruth, RendersInPassesThenReadsTheCache) {
 // truth), and a cache written without them is rendered again only when they are asked for.
 TEST(GroundTruth, KeepsItsHalvesAndRendersAgainWhenTheyAreAskedForAndMissing) {
   testing::TempDir dir;
-  SceneWithAccel built("cornell");
+  testing::SceneWithNativeAccel built(load_scene("cornell"));
   const Scene& scene = built.scene;
   const Accel& accel = built.accel;
   GroundTruthKey key{"cornell", scene.cameras[0], 16, 12, 3, 40, 0};
@@ -118,7 +108,7 @@ TEST(GroundTruth, KeepsItsHalvesAndRendersAgainWhenTheyAreAskedForAndMissing) {
 
 TEST(GroundTruth, StopsAtTheErrorTargetWithEstimates) {
   testing::TempDir dir;
-  SceneWithAccel built("furnace");
+  testing::SceneWithNativeAccel built(load_scene("furnace"));
   const Scene& scene = built.scene;
   const Accel& accel = built.accel;
   GroundTruthKey key{"furnace", scene.cameras[0], 8, 6, 3, 1 << 16, 1e30};

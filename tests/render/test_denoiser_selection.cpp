@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "accel/embree_native.h"
+#include "common/scene_with_accel.h"
 #include "denoise_test_images.h"
 #include "image/metrics.h"
 #include "render/denoiser.h"
@@ -22,13 +23,8 @@
 namespace tuneray {
 
 // The built-in Cornell box and native Embree's tree of it.
-struct CornellWithAccel {
-  Scene scene = make_cornell_scene();
-  EmbreeNativeAccel accel;
-  CornellWithAccel() {
-    accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-                 scene.triangles.size()});
-  }
+struct CornellWithAccel : testing::SceneWithNativeAccel {
+  CornellWithAccel() : SceneWithNativeAccel(make_cornell_scene()) {}
 };
 
 namespace {

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "accel/embree_native.h"
+#include "common/scene_with_accel.h"
 #include "render/adaptive_sampling.h"
 #include "render/environment_light.h"
 #include "render/film.h"
@@ -402,23 +403,15 @@ TEST(AdaptiveSampling, VarianceOfTheMeanMatchesTheSampleFormula) {
 
 // The built-in Cornell box rendered in uniform frames (no adaptive sampling) into `film`.
 struct UniformCornellFrames {
-  Scene scene = load_scene("cornell");
-  EmbreeNativeAccel accel;
+  testing::SceneWithNativeAccel cornell{load_scene("cornell")};
   RenderSettings s = [] {
     RenderSettings settings = small_settings();
     settings.quality.adaptive = false;
     return settings;
   }();
   PcgSampler sampler{1};
-  TileRenderer renderer{scene, build_accel(), scene.cameras.at(0), s, sampler};
+  TileRenderer renderer{cornell.scene, cornell.accel, cornell.scene.cameras.at(0), s, sampler};
   Film film{s.width, s.height};
-
- private:
-  const EmbreeNativeAccel& build_accel() {
-    accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-                 scene.triangles.size()});
-    return accel;
-  }
 };
 
 // A budget far below one pass adds a partial pass per frame: a quarter of the pixels first
