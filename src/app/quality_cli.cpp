@@ -25,6 +25,10 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
                   "Material evaluation: branchless (f and pdf in one straight-line pass) or "
                   "by-type (a switch per material type)")
       ->capture_default_str();
+  cmd->add_option("--sky-sampling", q.sky_sampling,
+                  "Light samples of a constant sky: bsdf (directions drawn from the surface's "
+                  "BSDF) or uniform (over the sphere)")
+      ->capture_default_str();
   cmd->add_flag("!--no-one-texel", q.one_texel,
                 "Keep textures on triangles whose UVs fall in one texel");
   cmd->add_flag("--lowres-sky", o.lowres_sky, "Biased: 8x8-averaged sky after the camera ray");
@@ -72,6 +76,8 @@ QualityOptions resolve_quality(const QualityCli& q) {
   o.branchless_materials =
       choose<bool>("--materials", q.materials, {{"branchless", true}, {"by-type", false}});
   o.sky_rgba = choose<bool>("--sky-texels", q.sky_texels, {{"rgba", true}, {"rgb", false}});
+  o.bsdf_sky =
+      choose<bool>("--sky-sampling", q.sky_sampling, {{"bsdf", true}, {"uniform", false}});
   o.sampler = choose<SamplerKind>(
       "--sampler", q.sampler, {{"bluenoise", SamplerKind::kBlueNoise}, {"pcg", SamplerKind::kPcg}});
   if (q.adaptive_on && q.adaptive_off)

@@ -16,6 +16,7 @@ struct QualityCli {
   std::string sky_texels = options.sky_rgba ? "rgba" : "rgb";
   std::string sampler = options.sampler == SamplerKind::kBlueNoise ? "bluenoise" : "pcg";
   std::string materials = options.branchless_materials ? "branchless" : "by-type";
+  std::string sky_sampling = options.bsdf_sky ? "bsdf" : "uniform";
   bool adaptive_on = false, adaptive_off = false;  // --adaptive / --no-adaptive given
   bool one_texel = true;                           // collapse one-texel textures at load time
 };

@@ -21,7 +21,7 @@ void set_clamp(QualityOptions& o, const QualityBenchOptions& a) {
 
 void set_unbiased(QualitySwitches& s) {
   QualityOptions& o = s.quality;
-  o.wavefront = o.sky_rgba = o.branchless_materials = o.adaptive = true;
+  o.wavefront = o.sky_rgba = o.branchless_materials = o.adaptive = o.bsdf_sky = true;
   o.sampler = SamplerKind::kBlueNoise;
   s.one_texel = true;
 }
@@ -36,7 +36,7 @@ using S = QualitySwitches;
 using A = QualityBenchOptions;
 
 // The baseline has every switch off (tiles, 12-byte sky texels, textures kept, per-type
-// material evaluation, PCG numbers, uniform sampling); each row switches one technique on;
+// material evaluation, PCG numbers, a constant sky sampled uniformly, uniform sampling); each row switches one technique on;
 // "unbiased" switches on every technique that leaves the expected image alone, "defaults" is
 // QualityOptions{} (what the renderer does unless told otherwise), "defaults+denoise" is what
 // turning the denoiser on by default would give, "all" switches on every one.
@@ -48,6 +48,7 @@ const std::vector<Config>& configurations() {
       {"one-texel", [](S& s, const A&) { s.one_texel = true; }},
       {"branchless", [](S& s, const A&) { s.quality.branchless_materials = true; }},
       {"bluenoise", [](S& s, const A&) { s.quality.sampler = SamplerKind::kBlueNoise; }},
+      {"bsdf-sky", [](S& s, const A&) { s.quality.bsdf_sky = true; }},
       {"adaptive", [](S& s, const A&) { s.quality.adaptive = true; }},
       {"lowres-sky", [](S& s, const A&) { s.quality.lowres_sky = true; }},
       {"regularize", [](S& s, const A&) { s.quality.regularize = true; }},

@@ -45,12 +45,13 @@ LightSampler::LightSampler(const Scene& scene, const EnvironmentLight& environme
   Planes& q = planes_;
   const size_t n = selection_.size();
   for (auto* v : {&q.px, &q.py, &q.pz, &q.e1x, &q.e1y, &q.e1z, &q.e2x, &q.e2y, &q.e2z, &q.nx, &q.ny,
-                  &q.nz, &q.area, &q.rx, &q.ry, &q.rz, &q.pmf, &q.cdf})
+                  &q.nz, &q.area, &q.rx, &q.ry, &q.rz, &q.pmf, &q.cdf, &q.cdf_width})
     v->assign(simd::lookup_table_size(n), 0.0f);  // padded for sample8's lookups
   q.two_sided.assign(simd::lookup_table_size(n), 0);
   for (size_t j = 0; j < n; ++j) {
     q.pmf[j] = selection_.pmf(j);
     q.cdf[j] = selection_.cdf(j);
+    q.cdf_width[j] = selection_.cdf(j + 1) - selection_.cdf(j);
     Vec3f position, e1, e2, normal, radiance;
     if (j < emissive_.size()) {
       const EmissiveTriangle& et = emissive_[j];
@@ -75,7 +76,7 @@ LightSampler::LightSampler(const Scene& scene, const EnvironmentLight& environme
   }
 }
 
-LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F8 u0, simd::F8 u1,
+LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u0, simd::F8 u1,
                                    uint32_t lanes) const {
   using simd::F8;
   using simd::I8;
@@ -87,9 +88,11 @@ LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F
   ls.wi = V8(F8(0.0f));
   ls.radiance = V8(F8(0.0f));
   ls.is_delta = M8::none();
+  ls.u_in_light = u0;
   if (empty() || !lanes) return ls;
 
   // The bin: sample_discrete's count of the bins starting at or below u, or its search.
+  const F8 u_select = u0;
   const size_t n = selection_.size();
   I8 index(0);
   if (n <= Distribution1D::kLinearSearchBins) {
@@ -114,6 +117,13 @@ LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F
   };
   const F8 pmf = at_bin(planes_.pmf);
   M8 ok = M8::from_bits(lanes) & (pmf > F8(0.0f));
+  {
+    // sample_discrete's u_remapped: the selecting number again, rescaled inside its bin.
+    const F8 width = at_bin(planes_.cdf_width);
+    const F8 r = (u_select - at_bin(planes_.cdf)) / simd::select(width > F8(0.0f), width, F8(1.0f));
+    u0 = simd::min(simd::max(simd::keep(width > F8(0.0f), r), F8(0.0f)), F8(kOneMinusEpsilon));
+    ls.u_in_light = u0;
+  }
 
   const M8 is_env =
       ok & (index == I8(static_cast<int32_t>(env_index_ == SIZE_MAX ? -1 : env_index_)));
@@ -196,11 +206,11 @@ LightSample8 LightSampler::sample8(const simd::V8& p, simd::F8 u_select, simd::F
   return ls;
 }
 
-LightSample LightSampler::sample(Vec3f p, float u_select, Vec2f u) const {
+LightSample LightSampler::sample(Vec3f p, Vec2f u) const {
   LightSample ls;
   if (empty()) return ls;
   float pmf = 0;
-  size_t index = selection_.sample_discrete(u_select, &pmf);
+  size_t index = selection_.sample_discrete(u.x, &pmf, &u.x);
   if (!(pmf > 0)) return ls;
   if (index == env_index_) {
     EnvironmentSample es = environment_.sample(u);

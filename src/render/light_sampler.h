@@ -1,5 +1,7 @@
 // Next-event estimation: picks one light (emissive triangle, point light or the environment)
-// with probability proportional to its estimated power, then a point/direction on it.
+// with probability proportional to its estimated power, then a point/direction on it (uniform
+// over the sphere on a constant environment; the shading step may reshape those by the BSDF,
+// QualityOptions::shaped_sky).
 #pragma once
 
 #include <cstdint>
@@ -29,6 +31,8 @@ struct LightSample8 {
   simd::V8 radiance;
   simd::F8 pdf;
   simd::M8 is_delta;
+  // u0 rescaled inside the chosen light's share of [0, 1): the number that placed the sample.
+  simd::F8 u_in_light;
 };
 
 class LightSampler {
@@ -36,15 +40,18 @@ class LightSampler {
   LightSampler(const Scene& scene, const EnvironmentLight& environment);
 
   bool empty() const { return selection_.size() == 0; }
-  // u_select picks the light, u the point on it.
-  LightSample sample(Vec3f p, float u_select, Vec2f u) const;
-  // sample() for the lanes in `lanes` (bit i = lane i) at once: point and triangle lights in
-  // SIMD lanes, the environment lane by lane.
-  LightSample8 sample8(const simd::V8& p, simd::F8 u_select, simd::F8 u0, simd::F8 u1,
-                       uint32_t lanes) const;
+  // u.x picks the light, and u (u.x rescaled inside the light's share of [0, 1)) the point on
+  // it, so a sampler's 2D stratification spans the choice of light and the point together.
+  LightSample sample(Vec3f p, Vec2f u) const;
+  // sample() for the lanes in `lanes` (bit i = lane i) at once: point and triangle lights and a
+  // constant environment in SIMD lanes, an environment map lane by lane.
+  LightSample8 sample8(const simd::V8& p, simd::F8 u0, simd::F8 u1, uint32_t lanes) const;
   // Solid-angle pdf of having sampled `light_point` on emissive triangle `prim` from p (for MIS
   // when a BSDF-sampled ray hits an emitter).
   float pdf_triangle(uint32_t prim, Vec3f p, Vec3f light_point, Vec3f light_normal) const;
+  // The choice among the lights (for tests: bin i is emissive triangle i, then the point
+  // lights, then the environment).
+  const Distribution1D& selection() const { return selection_; }
   // The probability of choosing the environment (0 without one).
   float environment_pmf() const {
     return env_index_ == SIZE_MAX ? 0.0f : selection_.pmf(env_index_);
@@ -79,6 +86,7 @@ class LightSampler {
     std::vector<int32_t> two_sided;  // -1 (all bits) when the triangle emits on both sides
     std::vector<float> pmf;          // selection probability
     std::vector<float> cdf;          // selection CDF starts: cdf[j] = P(bin < j)
+    std::vector<float> cdf_width;    // cdf[j + 1] - cdf[j]
   } planes_;
   std::vector<int32_t> emissive_index_of_prim_;  // -1 when not emissive
   Distribution1D selection_;                     // [emissive..., point lights..., environment]

@@ -32,9 +32,21 @@ struct PathCounters {
   uint64_t total_ns = 0;  // whole path work on this thread (shading = total - the two above)
 };
 
-// How many random numbers a shading step takes from a path's sampler: a light sample (four)
-// and a BSDF sample (four). shade8 reads them as planes u[0..7] over the wave's positions.
-inline constexpr int kShadeSamples = 8;
+// The random numbers of a shading step, in the order a path's sampler hands them out. shade8
+// reads them as planes u[0..7] over the wave's positions. Each 2D sample takes a whole pair
+// (0, 1), (2, 3), ...: the blue-noise sampler stratifies those pairs jointly, not numbers of two
+// different pairs.
+enum ShadeSample : int {
+  kLightX,    // which light, and (rescaled inside its share) the point on it ...
+  kLightY,    // ... as a 2D sample (LightSampler::sample)
+  kLobe,      // which BSDF lobe the next direction comes from
+  kSkyLobe,   // which lobe shapes a light sample of a constant sky (QualityOptions::bsdf_sky)
+  kBsdfX,     // the next direction ...
+  kBsdfY,     // ... as a 2D sample
+  kRoulette,  // Russian roulette
+  kSpare,     // unused: the sampler hands numbers out in fours
+  kShadeSamples
+};
 
 // A next-event-estimation ray; `contribution` is added to L when it is not occluded.
 struct ShadowRequest {

@@ -96,7 +96,8 @@ F8 power_heuristic(F8 a, F8 b) {
 }  // namespace
 
 void PathIntegrator::shade_misses(PathWave& w, size_t begin, M8 missed) const {
-  // shade_miss for a constant environment, 8 wide: its radiance is one colour, its pdf uniform.
+  // shade_miss for a constant environment, 8 wide: its radiance is one colour, its pdf was
+  // stored when the direction was sampled.
   const simd::I8 flags = simd::I8::load(w.flags.data() + begin);
   auto flag = [&flags](int32_t bit) {
     return M8(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
@@ -109,7 +110,7 @@ void PathIntegrator::shade_misses(PathWave& w, size_t begin, M8 missed) const {
     weight = simd::keep(previous_delta, weight);
   } else if (settings_.strategy == LightStrategy::kMis) {
     const F8 previous_pdf = F8::load(w.plane(PathWave::kPrevPdf) + begin);
-    const F8 env_pdf(lights_.environment_pmf() * kUniformSpherePdf);
+    const F8 env_pdf = F8::load(w.plane(PathWave::kPrevEnvPdf) + begin);
     weight = simd::select(previous_delta, weight, power_heuristic(previous_pdf, env_pdf));
   }
   const Color c = environment_.constant();
@@ -296,7 +297,20 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   const V8 beta = load3(PathWave::kBetaX);
   uint32_t nee = use_nee && !lights_.empty() ? (smooth & lanes).bits() : 0;
   if (nee) {
-    LightSample8 ls = lights_.sample8(position, load_u(0), load_u(1), load_u(2), nee);
+    LightSample8 ls = lights_.sample8(position, load_u(kLightX), load_u(kLightY), nee);
+    if (settings_.quality.bsdf_sky && environment_.is_constant()) {
+      // The sky's samples follow the BSDF instead: its radiance is one colour, so the product
+      // that NEE estimates is the BSDF's lobe times visibility, and no direction is wasted below
+      // the surface. Their pdf is the selection's times the BSDF's.
+      const M8 sky = M8::from_bits(nee) & (ls.distance >= F8(kInf)) & (ls.pdf > F8(0.0f));
+      if (sky.any()) {
+        const simd::BsdfSample8 shaped =
+            simd::sample(bsdf, wo, load_u(kSkyLobe), ls.u_in_light, load_u(kLightY));
+        ls.wi = simd::select(sky, shading.to_world(shaped.wi), ls.wi);
+        ls.pdf = simd::select(sky, simd::keep(shaped.ok, shaped.pdf * lights_.environment_pmf()),
+                              ls.pdf);
+      }
+    }
     if (settings_.quality.lowres_sky) {
       const M8 sky = M8::from_bits(nee) & (ls.distance >= F8(kInf)) & (ls.pdf > F8(0.0f));
       if (sky.any()) {
@@ -362,8 +376,8 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   }
 
   // --- The next direction: smooth lobes 8 wide, the delta lobes per lane.
-  const F8 u_lobe = load_u(3), u_roulette = load_u(6);
-  simd::BsdfSample8 bs = simd::sample(bsdf, wo, u_lobe, load_u(4), load_u(5));
+  const F8 u_lobe = load_u(kLobe), u_roulette = load_u(kRoulette);
+  simd::BsdfSample8 bs = simd::sample(bsdf, wo, u_lobe, load_u(kBsdfX), load_u(kBsdfY));
   M8 delta = M8::none();
   if (is_mirror.any()) {
     const M8 ok = is_mirror & (wo.z > F8(0.0f));
@@ -375,7 +389,7 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   }
   if (is_dielectric.any()) {
     const LaneOut wo_out(wo);
-    const LaneScalars ul(u_lobe), u0(load_u(4)), u1(load_u(5));
+    const LaneScalars ul(u_lobe), u0(load_u(kBsdfX)), u1(load_u(kBsdfY));
     LaneVecs wi, weight;
     LaneFloats pdf;
     uint32_t ok = 0;
@@ -414,6 +428,13 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   store3(PathWave::kDirX, simd::select(going, wi_world, -wo_world));
   store3(PathWave::kPrevX, simd::select(going, position, load3(PathWave::kPrevX)));
   store(PathWave::kPrevPdf, simd::select(going, bs.pdf, load(PathWave::kPrevPdf)));
+  if (environment_.is_constant())
+    store(PathWave::kPrevEnvPdf,
+          simd::select(going,
+                       settings_.quality.bsdf_sky
+                           ? bs.pdf * lights_.environment_pmf()
+                           : F8(lights_.environment_pmf() * kUniformSpherePdf),
+                       load(PathWave::kPrevEnvPdf)));
   const simd::I8 flags = simd::I8::load(w.flags.data() + begin);
   // previous_was_delta = the new lobe is delta; specular_chain stays only through deltas.
   const simd::I8 delta_bits = simd::select(

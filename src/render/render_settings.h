@@ -40,6 +40,9 @@ struct QualityOptions {
   bool profile_phases = false;  // time intersection / shading / shadow (costs a little)
   SamplerKind sampler = SamplerKind::kBlueNoise;  // unbiased either way
   bool branchless_materials = false;  // f and pdf in one straight-line pass (bsdf_evaluate)
+  // A constant environment's light samples are directions drawn from the BSDF at the shading
+  // point (so none fall below the surface), else uniform over the sphere (path_shade8.cpp).
+  bool bsdf_sky = true;
   // Biased: what a frame shows is filtered by the edge-avoiding denoiser (render/denoiser.h);
   // the film itself keeps accumulating the unbiased estimate.
   bool denoise = false;
@@ -49,11 +52,11 @@ struct QualityOptions {
   }
 
   // Every technique off: tiles, 12-byte sky texels, per-type materials, PCG numbers, uniform
-  // sampling, nothing biased. The plain renderer that ground truths use and that the ablation
+  // sampling, a constant sky light-sampled uniformly, nothing biased. The plain renderer that ground truths use and that the ablation
   // measures every technique against.
   static QualityOptions reference() {
     QualityOptions o;
-    o.wavefront = o.sky_rgba = o.adaptive = o.branchless_materials = false;
+    o.wavefront = o.sky_rgba = o.adaptive = o.branchless_materials = o.bsdf_sky = false;
     o.sampler = SamplerKind::kPcg;
     return o.without_bias();
   }

@@ -7,11 +7,6 @@
 
 namespace tuneray {
 
-namespace {
-// Largest float below one: keeps remapped samples inside [0, 1) after rounding.
-constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
-}  // namespace
-
 Vec2f sample_concentric_disk(Vec2f u) {
   // Shirley & Chiu 1997: maps concentric squares to concentric circles, so strata stay compact.
   // Both wedges need the sine and cosine of an angle in [-pi/4, pi/4] only (the second wedge's

@@ -20,6 +20,8 @@ inline float cosine_hemisphere_pdf(float cos_theta) {
 // Uniform direction on the unit sphere; pdf = 1 / (4 pi).
 Vec3f sample_uniform_sphere(Vec2f u);
 inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
+// The largest float below 1: where a number rescaled into [0, 1) is clamped.
+inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
 // Uniform point on a disk of radius 1 (concentric mapping, for thin-lens cameras).
 Vec2f sample_concentric_disk(Vec2f u);

@@ -105,6 +105,7 @@ TEST_F(Cli, PhaseProfileSplitsTheRenderTime) {
 
 TEST_F(Cli, BadQualityOptionsAreRejected) {
   expect_clean_failure(run_tuneray({"render", "cornell", "--sky-texels", "rgbx"}), "rgbx");
+  expect_clean_failure(run_tuneray({"render", "cornell", "--sky-sampling", "bsdff"}), "bsdff");
   expect_clean_failure(run_tuneray({"render", "cornell", "--adaptive", "--quiet"}), "frame-ms");
   expect_clean_failure(run_tuneray({"render", "cornell", "--scheduler", "waves"}), "waves");
   expect_clean_failure(run_tuneray({"render", "cornell", "--materials", "fast"}), "fast");

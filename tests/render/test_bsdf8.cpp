@@ -204,20 +204,24 @@ TEST(LightSampler8, EveryLaneIsTheScalarSample) {
     int lit = 0;
     for (int trial = 0; trial < 500; ++trial) {
       Vec3f p[kLanes];
-      alignas(32) float us[kLanes], u0[kLanes], u1[kLanes];
+      alignas(32) float u0[kLanes], u1[kLanes];
       for (int i = 0; i < kLanes; ++i) {
         p[i] = b.lo + (b.hi - b.lo) * Vec3f(rng.next_float(), rng.next_float(), rng.next_float());
-        us[i] = rng.next_float(), u0[i] = rng.next_float(), u1[i] = rng.next_float();
+        u0[i] = rng.next_float(), u1[i] = rng.next_float();
       }
       const uint32_t lanes = 0xffu >> (trial % 4);  // some calls leave lanes out
-      LightSample8 ls =
-          lights.sample8(lanes_of(p), F8::load(us), F8::load(u0), F8::load(u1), lanes);
+      LightSample8 ls = lights.sample8(lanes_of(p), F8::load(u0), F8::load(u1), lanes);
       for (int i = 0; i < kLanes; ++i) {
         if (!((lanes >> i) & 1)) continue;
-        LightSample s = lights.sample(p[i], us[i], {u0[i], u1[i]});
+        LightSample s = lights.sample(p[i], {u0[i], u1[i]});
         const std::string what =
             std::string(name) + " trial " + std::to_string(trial) + " lane " + std::to_string(i);
         expect_close(ls.pdf[i], s.pdf, 1e-4f, what + " pdf");
+        // The number that placed the sample: u0 rescaled inside the light's share, as the
+        // scalar selection rescales it.
+        float pmf = 0, rescaled = 0;
+        lights.selection().sample_discrete(u0[i], &pmf, &rescaled);
+        EXPECT_NEAR(ls.u_in_light[i], rescaled, 1e-5f) << what;
         if (!(s.pdf > 0)) continue;
         ++lit;
         EXPECT_LT(length(ls.wi.lane(i) - s.wi), 1e-5f) << what;
