@@ -76,8 +76,7 @@ QualityOptions resolve_quality(const QualityCli& q) {
   o.branchless_materials =
       choose<bool>("--materials", q.materials, {{"branchless", true}, {"by-type", false}});
   o.sky_rgba = choose<bool>("--sky-texels", q.sky_texels, {{"rgba", true}, {"rgb", false}});
-  o.bsdf_sky =
-      choose<bool>("--sky-sampling", q.sky_sampling, {{"bsdf", true}, {"uniform", false}});
+  o.bsdf_sky = choose<bool>("--sky-sampling", q.sky_sampling, {{"bsdf", true}, {"uniform", false}});
   o.sampler = choose<SamplerKind>(
       "--sampler", q.sampler, {{"bluenoise", SamplerKind::kBlueNoise}, {"pcg", SamplerKind::kPcg}});
   if (q.adaptive_on && q.adaptive_off)

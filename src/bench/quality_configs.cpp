@@ -36,10 +36,11 @@ using S = QualitySwitches;
 using A = QualityBenchOptions;
 
 // The baseline has every switch off (tiles, 12-byte sky texels, textures kept, per-type
-// material evaluation, PCG numbers, a constant sky sampled uniformly, uniform sampling); each row switches one technique on;
-// "unbiased" switches on every technique that leaves the expected image alone, "defaults" is
-// QualityOptions{} (what the renderer does unless told otherwise), "defaults+denoise" is what
-// turning the denoiser on by default would give, "all" switches on every one.
+// material evaluation, PCG numbers, a constant sky sampled uniformly, uniform sampling); each row
+// switches one technique on; "unbiased" switches on every technique that leaves the expected image
+// alone, "defaults" is QualityOptions{} (what the renderer does unless told otherwise),
+// "defaults+denoise" is what turning the denoiser on by default would give, "all" switches on every
+// one.
 const std::vector<Config>& configurations() {
   static const std::vector<Config> configs = {
       {"baseline", [](S&, const A&) {}},

@@ -137,8 +137,7 @@ void add_visibility(const LightSampler& lights, const Accel& accel, const Featur
   for (int k = 0; k < samples; ++k) {
     // Stratified light choice: the ray's samples spread over the selection's CDF.
     const float u_select = (k + rng.next_float()) / static_cast<float>(samples);
-    const LightSample ls =
-        lights.sample(at.position, {u_select, rng.next_float()});
+    const LightSample ls = lights.sample(at.position, {u_select, rng.next_float()});
     const float cosine = dot(ls.wi, at.normal);
     float weight = 0;
     if (ls.pdf > 0 && cosine > 0 && dot(ls.wi, at.geometric_normal) > 0)

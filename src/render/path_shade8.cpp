@@ -429,12 +429,12 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   store3(PathWave::kPrevX, simd::select(going, position, load3(PathWave::kPrevX)));
   store(PathWave::kPrevPdf, simd::select(going, bs.pdf, load(PathWave::kPrevPdf)));
   if (environment_.is_constant())
-    store(PathWave::kPrevEnvPdf,
-          simd::select(going,
-                       settings_.quality.bsdf_sky
-                           ? bs.pdf * lights_.environment_pmf()
-                           : F8(lights_.environment_pmf() * kUniformSpherePdf),
-                       load(PathWave::kPrevEnvPdf)));
+    store(
+        PathWave::kPrevEnvPdf,
+        simd::select(going,
+                     settings_.quality.bsdf_sky ? bs.pdf * lights_.environment_pmf()
+                                                : F8(lights_.environment_pmf() * kUniformSpherePdf),
+                     load(PathWave::kPrevEnvPdf)));
   const simd::I8 flags = simd::I8::load(w.flags.data() + begin);
   // previous_was_delta = the new lobe is delta; specular_chain stays only through deltas.
   const simd::I8 delta_bits = simd::select(

@@ -39,10 +39,10 @@ struct PathWave {
     kBetaZ,  // throughput
     kPrevX,
     kPrevY,
-    kPrevZ,         // the previous vertex (for the MIS of emitters it hits)
-    kPrevPdf,       // the solid-angle pdf of the direction sampled there
-    // The pdf with which light sampling there picks that direction on a constant environment
-    // (it depends on the vertex's normal; for the MIS of a ray that leaves the scene).
+    kPrevZ,    // the previous vertex (for the MIS of emitters it hits)
+    kPrevPdf,  // the solid-angle pdf of the direction sampled there
+    // The pdf with which light sampling there picks that direction on a constant sky (it
+    // depends on the vertex's BSDF; for the MIS of a ray that leaves the scene).
     kPrevEnvPdf,
     kMaxRoughness,  // path-space regularization: the roughest vertex so far
     kFloatPlanes

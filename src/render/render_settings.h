@@ -52,8 +52,8 @@ struct QualityOptions {
   }
 
   // Every technique off: tiles, 12-byte sky texels, per-type materials, PCG numbers, uniform
-  // sampling, a constant sky light-sampled uniformly, nothing biased. The plain renderer that ground truths use and that the ablation
-  // measures every technique against.
+  // sampling, a constant sky light-sampled uniformly, nothing biased. The plain renderer that
+  // ground truths use and that the ablation measures every technique against.
   static QualityOptions reference() {
     QualityOptions o;
     o.wavefront = o.sky_rgba = o.adaptive = o.branchless_materials = o.bsdf_sky = false;

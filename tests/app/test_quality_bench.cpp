@@ -46,9 +46,9 @@ TEST_F(QualityBench, EveryConfigurationGetsARowPerFrameAndTheTruthIsShared) {
     EXPECT_GT(c["time_over_budget"].get<double>(), 0.0) << c["config"];
   }
   const std::vector<std::string> expected = {
-      "baseline", "wavefront", "sky-rgba",   "one-texel",  "branchless",       "bluenoise",
-      "bsdf-sky", "adaptive", "lowres-sky", "regularize", "clamp",            "denoise",
-      "unbiased",   "defaults", "defaults+denoise", "all"};
+      "baseline", "wavefront", "sky-rgba",         "one-texel",  "branchless", "bluenoise",
+      "bsdf-sky", "adaptive",  "lowres-sky",       "regularize", "clamp",      "denoise",
+      "unbiased", "defaults",  "defaults+denoise", "all"};
   EXPECT_EQ(names, expected);
   const std::vector<std::string> biased = {"lowres-sky", "regularize",       "clamp",
                                            "denoise",    "defaults+denoise", "all"};
