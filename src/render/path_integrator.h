@@ -35,14 +35,15 @@ struct PathCounters {
 // The random numbers of a shading step, in the order a path's sampler hands them out. shade8
 // reads them as planes u[0..7] over the wave's positions. Each 2D sample takes a whole pair
 // (0, 1), (2, 3), ...: the blue-noise sampler stratifies those pairs jointly, not numbers of two
-// different pairs.
+// different pairs. The 2D samples come first because its tables end after the first four numbers
+// of the second bounce, which then go to the next direction and the light.
 enum ShadeSample : int {
+  kBsdfX,     // the next direction ...
+  kBsdfY,     // ... as a 2D sample
   kLightX,    // which light, and (rescaled inside its share) the point on it ...
   kLightY,    // ... as a 2D sample (LightSampler::sample)
   kLobe,      // which BSDF lobe the next direction comes from
   kSkyLobe,   // which lobe shapes a light sample of a constant sky (QualityOptions::bsdf_sky)
-  kBsdfX,     // the next direction ...
-  kBsdfY,     // ... as a 2D sample
   kRoulette,  // Russian roulette
   kSpare,     // unused: the sampler hands numbers out in fours
   kShadeSamples
