@@ -1,7 +1,7 @@
 // Next-event estimation: picks one light (emissive triangle, point light or the environment)
 // with probability proportional to its estimated power, then a point/direction on it (uniform
 // over the sphere on a constant environment; the shading step may reshape those by the BSDF,
-// QualityOptions::shaped_sky).
+// QualityOptions::bsdf_sky).
 #pragma once
 
 #include <cstdint>
