@@ -96,8 +96,8 @@ F8 power_heuristic(F8 a, F8 b) {
 }  // namespace
 
 void PathIntegrator::shade_misses(PathWave& w, size_t begin, M8 missed) const {
-  // shade_miss for a constant environment, 8 wide: its radiance is one colour, its pdf was
-  // stored when the direction was sampled.
+  // shade_miss for a constant environment, 8 wide: its radiance is one colour; its light
+  // samples' pdf is uniform, or the BSDF's own (the previous vertex's, times the selection).
   const simd::I8 flags = simd::I8::load(w.flags.data() + begin);
   auto flag = [&flags](int32_t bit) {
     return M8(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
@@ -110,7 +110,9 @@ void PathIntegrator::shade_misses(PathWave& w, size_t begin, M8 missed) const {
     weight = simd::keep(previous_delta, weight);
   } else if (settings_.strategy == LightStrategy::kMis) {
     const F8 previous_pdf = F8::load(w.plane(PathWave::kPrevPdf) + begin);
-    const F8 env_pdf = F8::load(w.plane(PathWave::kPrevEnvPdf) + begin);
+    const float pmf = lights_.environment_pmf();
+    const F8 env_pdf =
+        settings_.quality.bsdf_sky ? previous_pdf * pmf : F8(pmf * kUniformSpherePdf);
     weight = simd::select(previous_delta, weight, power_heuristic(previous_pdf, env_pdf));
   }
   const Color c = environment_.constant();
@@ -428,13 +430,6 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   store3(PathWave::kDirX, simd::select(going, wi_world, -wo_world));
   store3(PathWave::kPrevX, simd::select(going, position, load3(PathWave::kPrevX)));
   store(PathWave::kPrevPdf, simd::select(going, bs.pdf, load(PathWave::kPrevPdf)));
-  if (environment_.is_constant())
-    store(
-        PathWave::kPrevEnvPdf,
-        simd::select(going,
-                     settings_.quality.bsdf_sky ? bs.pdf * lights_.environment_pmf()
-                                                : F8(lights_.environment_pmf() * kUniformSpherePdf),
-                     load(PathWave::kPrevEnvPdf)));
   const simd::I8 flags = simd::I8::load(w.flags.data() + begin);
   // previous_was_delta = the new lobe is delta; specular_chain stays only through deltas.
   const simd::I8 delta_bits = simd::select(

@@ -39,11 +39,8 @@ struct PathWave {
     kBetaZ,  // throughput
     kPrevX,
     kPrevY,
-    kPrevZ,    // the previous vertex (for the MIS of emitters it hits)
-    kPrevPdf,  // the solid-angle pdf of the direction sampled there
-    // The pdf with which light sampling there picks that direction on a constant sky (it
-    // depends on the vertex's BSDF; for the MIS of a ray that leaves the scene).
-    kPrevEnvPdf,
+    kPrevZ,         // the previous vertex (for the MIS of emitters it hits)
+    kPrevPdf,       // the solid-angle pdf of the direction sampled there
     kMaxRoughness,  // path-space regularization: the roughest vertex so far
     kFloatPlanes
   };
@@ -78,7 +75,7 @@ struct PathWave {
     for (int k = kLX; k <= kCameraZ; ++k) p[k][i] = 0.0f;
     p[kBetaX][i] = p[kBetaY][i] = p[kBetaZ][i] = 1.0f;
     p[kPrevX][i] = ray.org.x, p[kPrevY][i] = ray.org.y, p[kPrevZ][i] = ray.org.z;
-    p[kPrevPdf][i] = p[kPrevEnvPdf][i] = 0.0f;
+    p[kPrevPdf][i] = 0.0f;
     p[kMaxRoughness][i] = 0.0f;
     depth[i] = 0;
     flags[i] = kPreviousWasDelta | kSpecularChain;
@@ -99,7 +96,6 @@ struct PathWave {
     org.y.store(plane(kPrevY) + begin);
     org.z.store(plane(kPrevZ) + begin);
     simd::F8(0.0f).store(plane(kPrevPdf) + begin);
-    simd::F8(0.0f).store(plane(kPrevEnvPdf) + begin);
     simd::F8(0.0f).store(plane(kMaxRoughness) + begin);
     simd::I8(0).store(depth.data() + begin);
     simd::I8(kPreviousWasDelta | kSpecularChain).store(flags.data() + begin);
