@@ -43,14 +43,27 @@ void GreedyGqPredictor::features(std::span<const double> state, std::span<const 
 void GreedyGqPredictor::train(std::span<const double> state, std::span<const double> config,
                               double reward) {
   features(state, config, scratch_);
+  train_features(scratch_, reward);
+}
+
+std::vector<double> GreedyGqPredictor::feature_vector(std::span<const double> state,
+                                                      std::span<const double> config) const {
+  std::vector<double> phi;
+  features(state, config, phi);
+  return phi;
+}
+
+void GreedyGqPredictor::train_features(std::span<const double> phi, double reward) {
+  if (phi.size() != theta_.size())
+    throw std::invalid_argument("GreedyGqPredictor: feature vector of the wrong size");
   double prediction = 0.0;
   double norm_squared = 0.0;
-  for (size_t j = 0; j < scratch_.size(); ++j) {
-    prediction += theta_[j] * scratch_[j];
-    norm_squared += scratch_[j] * scratch_[j];
+  for (size_t j = 0; j < phi.size(); ++j) {
+    prediction += theta_[j] * phi[j];
+    norm_squared += phi[j] * phi[j];
   }
   const double step = options_.step_size * (reward - prediction) / norm_squared;
-  for (size_t j = 0; j < scratch_.size(); ++j) theta_[j] += step * scratch_[j];
+  for (size_t j = 0; j < phi.size(); ++j) theta_[j] += step * phi[j];
   ++updates_;
 }
 

@@ -52,6 +52,12 @@ class GreedyGqPredictor {
 
   // One update with a reward already computed by reward().
   void train(std::span<const double> state, std::span<const double> config, double reward);
+  // φ(state, config), the bias last: training on a fixed set of samples over many passes
+  // computes each sample's features once and trains on them (train_features).
+  std::vector<double> feature_vector(std::span<const double> state,
+                                     std::span<const double> config) const;
+  // The update train() makes, on features from feature_vector().
+  void train_features(std::span<const double> phi, double reward);
   double value(std::span<const double> state, std::span<const double> config) const;
   // Index of the candidate with the largest Q for `state`, nullopt for an empty list.
   std::optional<size_t> best_candidate(std::span<const double> state,

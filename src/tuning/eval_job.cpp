@@ -107,7 +107,7 @@ EvalJobResult run_eval_job(const EvalProfile& p, const EvalScene& scene, EvalCos
   if (job.search) {
     const std::string run_key = eval_run_key(p, scene.name, objective);
     tuner::HybridTuner tuner(eval_space(p), make_indicator_schema(),
-                             eval_tuner_options(p, run_key, job.camera));
+                             eval_tuner_options(p, objective, run_key, job.camera));
     const tuner::State& state = scene.states[static_cast<size_t>(job.camera)];
     if (job.done_hardware == hardware)
       for (const EvalFrame& frame : job.done) {

@@ -39,7 +39,7 @@ void store_result(const EvalProfile& p, const EvalPaths& paths, const EvalScene&
     throw std::runtime_error(fmt::format("{} camera {}: {} search frames, the profile has {}",
                                          run_key, r.camera, r.frames.size(), p.iterations));
   if (!r.frames.empty()) {
-    tuner::TunerOptions options = eval_tuner_options(p, run_key, r.camera);
+    tuner::TunerOptions options = eval_tuner_options(p, objective, run_key, r.camera);
     options.db_path = eval_db_path(paths);
     options.hardware = r.hardware;
     tuner::HybridTuner tuner(eval_space(p), make_indicator_schema(), options);

@@ -314,7 +314,7 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
      << fmt::format(
             "Protocol: {} cameras per scene along its camera path, {} search frames per "
             "camera (each builds the BVH as the objective requires and renders {} spp at "
-            "{}x{}, {} bounces, {} scheduler); the search space is {}; predictors trained "
+            "{}x{}, {} bounces, {} scheduler); the search space is {}{}; predictors trained "
             "on {:.0f} % of the cameras and validated on the rest, {} random splits. At each "
             "camera, every configuration compared (the default, native Embree, the search's "
             "converged configuration and best sample, every prediction) is re-measured in one "
@@ -329,6 +329,9 @@ std::string write_eval_report(const EvalResults& r, const std::string& out_dir,
             p.wavefront ? "wavefront" : "tile",
             p.native_in_space ? "the backend (tuned BVH or native Embree) and the BVH parameters"
                               : "the tuned BVH's parameters only",
+            p.seeded ? ", each search seeded as `tune` seeds its searches (`--seeded`: our tree "
+                       "with Embree's BVH8 settings and its variants in the first simplex)"
+                     : "",
             100 * p.train_fraction, p.repetitions, p.compare_min_rounds, 100 * p.compare_target,
             p.compare_max_rounds);
   for (const std::string obj : {"render", "total"}) {

@@ -22,16 +22,18 @@ std::string eval_run_key(const EvalProfile& p, const std::string& scene, Objecti
 }
 
 std::string eval_tuning_key(const EvalProfile& p, const std::string& run_key, int camera) {
-  return fmt::format("{}/{}/cam{}", p.native_in_space ? "eval+backend" : "eval", run_key, camera);
+  return fmt::format("{}{}/{}/cam{}", p.native_in_space ? "eval+backend" : "eval",
+                     p.seeded ? "+seeded" : "", run_key, camera);
 }
 
 tuner::Space eval_space(const EvalProfile& p) {
   return p.native_in_space ? make_backend_space() : make_bvh_space();
 }
 
-tuner::TunerOptions eval_tuner_options(const EvalProfile& p, const std::string& run_key,
-                                       int camera) {
+tuner::TunerOptions eval_tuner_options(const EvalProfile& p, Objective objective,
+                                       const std::string& run_key, int camera) {
   tuner::TunerOptions options;
+  if (p.seeded) options.search_seeds = tuning_seeds(eval_space(p), objective == Objective::kTotal);
   options.epsilon = 1.0;
   options.seed = p.seed + static_cast<uint64_t>(camera);
   options.search.max_iterations = p.iterations;

@@ -36,15 +36,15 @@ std::string eval_scene_name(const std::string& spec);
 // not compare), and so are synthetic costs (they must never mix with measured ones).
 std::string eval_run_key(const EvalProfile& p, const std::string& scene, Objective objective);
 
-// Tuning key of one camera's search. The space is part of it: the database refuses one key with
-// two spaces.
+// Tuning key of one camera's search. The space is part of it (the database refuses one key with
+// two spaces), and so are the seeds (a seeded search is another search).
 std::string eval_tuning_key(const EvalProfile& p, const std::string& run_key, int camera);
 
 tuner::Space eval_space(const EvalProfile& p);
 
 // Options of one camera's search, without database (db_path and hardware are the caller's).
-tuner::TunerOptions eval_tuner_options(const EvalProfile& p, const std::string& run_key,
-                                       int camera);
+tuner::TunerOptions eval_tuner_options(const EvalProfile& p, Objective objective,
+                                       const std::string& run_key, int camera);
 
 // Suggests, measures and reports search frame `k` (from 0), then measures the yardstick if
 // yardstick_after_frame(p, k).

@@ -267,7 +267,7 @@ EvalResults run_eval_study(const EvalProfile& p, const EvalPaths& paths,
       bool searched_all = true;
       for (size_t ci = 0; ci < n_cameras; ++ci) {
         const int camera = static_cast<int>(ci);
-        tuner::TunerOptions options = eval_tuner_options(p, run_key, camera);
+        tuner::TunerOptions options = eval_tuner_options(p, objective, run_key, camera);
         options.db_path = db_path;
         const SearchSource source =
             search_source(db, options.tuning_key, hardware, o.mix_signatures, p.iterations);

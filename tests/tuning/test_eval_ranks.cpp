@@ -178,7 +178,7 @@ TEST_F(EvalRanks, ContinuesASearchTheDatabaseHoldsInPart) {
   // Three frames of one camera's search, as a single-rank run killed mid-search leaves them.
   const std::unique_ptr<EvalScene> scene = load_eval_scene(p, "voxels");
   const std::string run_key = eval_run_key(p, "voxels", Objective::kTotal);
-  tuner::TunerOptions options = eval_tuner_options(p, run_key, 2);
+  tuner::TunerOptions options = eval_tuner_options(p, Objective::kTotal, run_key, 2);
   options.db_path = eval_db_path(paths("partial"));
   options.hardware = "test-cpu x2";
   std::filesystem::create_directories(paths("partial").out_dir);

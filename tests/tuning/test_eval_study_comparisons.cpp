@@ -228,5 +228,36 @@ TEST_F(EvalStudyComparisons, TheYardstickPutsTheSearchFramesInTheComparisonsWind
   }
 }
 
+TEST_F(EvalStudyComparisons, ASeededStudyMeasuresTunesSeedsFirstUnderItsOwnKey) {
+  const tuner::Space space = eval_space(p_);
+  const std::vector<tuner::Config> seeds = tuning_seeds(space, false);
+  ASSERT_GE(seeds.size(), 2u);
+  // The seeds' frames at camera 0, in a run without and with --seeded.
+  auto seeds_measured = [&](const std::string& name) {
+    run(name, nullptr);
+    tuner::TuningDb db(eval_db_path(paths(name)));
+    const std::string key = eval_tuning_key(p_, eval_run_key(p_, "cornell", Objective::kRender), 0);
+    const auto signature = db.find_signature(key, "test-cpu x2");
+    EXPECT_TRUE(signature.has_value()) << key;
+    if (!signature) return size_t{0};
+    const auto samples = db.samples(*signature);
+    // The first simplex: the default and one point per dimension, the seeds among them.
+    const size_t first_simplex = std::min(samples.size(), space.size() + 1);
+    size_t found = 0;
+    for (const tuner::Config& seed : seeds)
+      for (size_t i = 0; i < first_simplex; ++i)
+        if (samples[i].config == seed.to_string()) {
+          ++found;
+          break;
+        }
+    return found;
+  };
+  p_.iterations = static_cast<int>(space.size()) + 1;
+  EXPECT_EQ(seeds_measured("unseeded"), 0u);
+  p_.seeded = true;
+  EXPECT_NE(eval_tuning_key(p_, "k", 0).find("+seeded"), std::string::npos);
+  EXPECT_EQ(seeds_measured("seeded"), seeds.size());
+}
+
 }  // namespace
 }  // namespace tuneray
