@@ -23,7 +23,7 @@ EvalProfile predictor_profile(int cameras) {
   return p;
 }
 
-// A scene of `cameras` cameras whose normalised states are given by `state_of(camera)`.
+// A scene of `cameras` cameras, camera c at the normalised state `state_of(c, dims)`.
 template <class StateOf>
 EvalScene scene_of(int cameras, size_t dims, StateOf state_of) {
   EvalScene scene;
@@ -47,9 +47,9 @@ TEST(EvalPredictions, TheNearestNeighbourHandsOnTheNearestTrainingCamerasConfigu
   for (int c = 0; c < cameras; ++c) {
     BvhConfig b;
     b.max_leaf = c + 4;
-    searches[static_cast<size_t>(c)].incumbent = to_tuner_config(space, AccelChoice::tuned(b));
-    searches[static_cast<size_t>(c)].samples = {
-        {searches[static_cast<size_t>(c)].incumbent.to_string(), 5.0}};
+    CameraSearch& s = searches[static_cast<size_t>(c)];
+    s.incumbent = to_tuner_config(space, AccelChoice::tuned(b));
+    s.samples = {{s.incumbent.to_string(), 5.0}};
   }
   const std::vector<EvalPrediction> predictions =
       predict_held_out_cameras(p, scene, space, schema, searches);
