@@ -34,9 +34,9 @@ struct EvalProfile {
   uint64_t seed = 1;
   bool wavefront = QualityOptions{}.wavefront;  // the scheduler frames are measured on
   bool native_in_space = true;  // native Embree is a choice of the search (make_backend_space)
-  // Each search also starts from the seeds `tune` gives its searches (tuning_seeds: our tree with
-  // Embree's BVH8 settings and its variants) beside the Latin Hypercube points. Off: the paper's
-  // protocol, searches from the default configuration and random points only.
+  // Each search's first simplex holds the seeds `tune` gives its searches (tuning_seeds: our tree
+  // with Embree's BVH8 settings and its variants) in place of its first Latin Hypercube points.
+  // Off: the paper's protocol, searches from the default configuration and random points only.
   bool seeded = false;
   // Every measurement replaced by a deterministic made-up cost (tuning/eval_costs.h): for tests
   // of resume and reproducibility only, the figures say nothing about the renderer.
