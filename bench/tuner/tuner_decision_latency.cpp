@@ -77,8 +77,9 @@ std::string make_database() {
   return path;
 }
 
-TunerOptions options(const std::string& path, double epsilon) {
+TunerOptions options(const std::string& path, double epsilon, int replays = -1) {
   TunerOptions o;
+  if (replays >= 0) o.gq.replays_per_sample = replays;
   o.db_path = path;
   o.tuning_key = "bench";
   o.hardware = "bench-cpu";
@@ -86,11 +87,12 @@ TunerOptions options(const std::string& path, double epsilon) {
   return o;
 }
 
-// One state for many frames (the common case): suggest + report only.
-void BM_SuggestReportSameState(benchmark::State& bench, double epsilon) {
+// One state for many frames (the common case): suggest + report only. `replays`: the RBF
+// predictor's replays per report (-1: the default), to show what they cost.
+void BM_SuggestReportSameState(benchmark::State& bench, double epsilon, int replays) {
   const std::string path = make_database();
   {
-    HybridTuner tuner(bvh_space(), schema(), options(path, epsilon));
+    HybridTuner tuner(bvh_space(), schema(), options(path, epsilon, replays));
     const State state(8, 0.37);
     const Space& space = tuner.space();
     for (auto _ : bench) {
@@ -128,8 +130,12 @@ void BM_OpenDatabaseWith50kSamples(benchmark::State& bench) {
   for (const char* suffix : {"", "-wal", "-shm"}) std::remove((path + suffix).c_str());
 }
 
-BENCHMARK_CAPTURE(BM_SuggestReportSameState, search, 1.0)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_SuggestReportSameState, exploit, 0.0)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_SuggestReportSameState, search, 1.0, -1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_SuggestReportSameState, exploit, 0.0, -1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_SuggestReportSameState, exploit_no_replay, 0.0, 0)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_SuggestReportSameState, exploit_32_replays, 0.0, 32)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SuggestReportNewStateEveryCall)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_OpenDatabaseWith50kSamples)->Unit(benchmark::kMillisecond)->Iterations(3);
 

@@ -15,6 +15,9 @@ GreedyGqPredictor::GreedyGqPredictor(size_t state_dims, size_t config_dims,
   if (!(options.width > 0.0) || !(options.step_size > 0.0)) {
     throw std::invalid_argument("GreedyGqPredictor: width and step size must be positive");
   }
+  if (options.replays_per_sample < 0) {
+    throw std::invalid_argument("GreedyGqPredictor: replays per sample must be >= 0");
+  }
   const size_t dims = state_dims + config_dims;
   const auto count = static_cast<size_t>(std::ceil(options.centres_per_dimension * dims));
   Rng rng(seed ^ 0x5eedc3e7ULL);
@@ -44,6 +47,35 @@ void GreedyGqPredictor::train(std::span<const double> state, std::span<const dou
                               double reward) {
   features(state, config, scratch_);
   train_features(scratch_, reward);
+  remember(state, config, reward);
+  if (memory_.empty()) return;
+  for (int k = 0; k < options_.replays_per_sample; ++k) {
+    // splitmix64 of the update count: uniform draws that a replay of the same samples repeats.
+    uint64_t z = updates_ * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    const Remembered& sample = memory_[z % memory_.size()];
+    const std::span<const double> point(sample.point);
+    features(point.first(state_dims_), point.subspan(state_dims_), scratch_);
+    train_features(scratch_, sample.reward);
+  }
+}
+
+void GreedyGqPredictor::remember(std::span<const double> state, std::span<const double> config,
+                                 double reward) {
+  if (state.size() != state_dims_ || config.size() != config_dims_) {
+    throw std::invalid_argument("GreedyGqPredictor: dimension mismatch");
+  }
+  if (options_.replay_memory == 0) return;
+  Remembered sample{std::vector<double>(state.begin(), state.end()), reward};
+  sample.point.insert(sample.point.end(), config.begin(), config.end());
+  if (memory_.size() < options_.replay_memory) {
+    memory_.push_back(std::move(sample));
+    return;
+  }
+  memory_[memory_next_] = std::move(sample);
+  memory_next_ = (memory_next_ + 1) % memory_.size();
 }
 
 std::vector<double> GreedyGqPredictor::feature_vector(std::span<const double> state,

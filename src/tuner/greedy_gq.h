@@ -23,6 +23,14 @@
 // - A failed configuration gets reward 0 with kInverse (the limit of 1/cost) and, with kNegLog,
 //   the reward of ten times the worst finite cost seen so far, so a failure is worse than every
 //   success without an infinite value wrecking θ.
+// - Experience replay: each train() is followed by `replays_per_sample` [32] updates on samples
+//   drawn from the last `replay_memory` [4096] trained or remembered ones. An online tuner
+//   trains once per report, state after state, and each normalised step pulls θ towards the
+//   latest sample, so without replay the fit of earlier states fades: on the bandit of
+//   tests/tuner, one pass in state order picks within 5 % for 12 of 80 held-out states, with 32
+//   replays for 65 (200 shuffled passes: 78). The draws are a hash of the update count, so the
+//   same sequence of samples gives the same θ bit for bit (a reopened database replays into θ
+//   what came after its snapshot, and only remembers what came before).
 // - Exploit: argmax of Q over a candidate list (the configurations past searches converged to).
 //   φ factorises into a state part and a config part (the squared distance is a sum), so the
 //   state part is computed once per query.
@@ -43,6 +51,8 @@ struct GreedyGqOptions {
   double centres_per_dimension = 5.0;
   double width = 1.0;
   double step_size = 0.1;
+  int replays_per_sample = 32;
+  size_t replay_memory = 4096;
 };
 
 class GreedyGqPredictor {
@@ -50,8 +60,11 @@ class GreedyGqPredictor {
   GreedyGqPredictor(size_t state_dims, size_t config_dims, const GreedyGqOptions& options,
                     uint64_t seed);
 
-  // One update with a reward already computed by reward().
+  // One update with a reward already computed by reward(), then the replays.
   void train(std::span<const double> state, std::span<const double> config, double reward);
+  // Adds a sample to the replay memory without an update (samples already folded into a
+  // restored θ).
+  void remember(std::span<const double> state, std::span<const double> config, double reward);
   // φ(state, config), the bias last: training on a fixed set of samples over many passes
   // computes each sample's features once and trains on them (train_features).
   std::vector<double> feature_vector(std::span<const double> state,
@@ -70,6 +83,7 @@ class GreedyGqPredictor {
   size_t feature_count() const { return centres_.size() + 1; }
   const std::vector<double>& theta() const { return theta_; }
   uint64_t updates() const { return updates_; }
+  size_t remembered() const { return memory_.size(); }
 
   // θ, centres and options, exactly.
   std::string serialise() const;
@@ -79,6 +93,10 @@ class GreedyGqPredictor {
  private:
   void features(std::span<const double> state, std::span<const double> config,
                 std::vector<double>& phi) const;
+  struct Remembered {
+    std::vector<double> point;  // state then config
+    double reward;
+  };
 
   size_t state_dims_;
   size_t config_dims_;
@@ -86,6 +104,8 @@ class GreedyGqPredictor {
   std::vector<std::vector<double>> centres_;  // each of size state_dims + config_dims
   std::vector<double> theta_;                 // last entry: bias
   uint64_t updates_ = 0;
+  std::vector<Remembered> memory_;  // a ring of at most options_.replay_memory samples
+  size_t memory_next_ = 0;          // the slot the next sample overwrites once the ring is full
   mutable std::vector<double> scratch_;
 };
 

@@ -275,9 +275,11 @@ void HybridTuner::record(StateData& state, const Config& config, double cost, bo
   ++state.samples;
   update_best(state);
   if (std::isfinite(cost)) worst_finite_cost_ = std::max(worst_finite_cost_, cost);
+  const double reward = GreedyGqPredictor::reward(options_.reward, cost, worst_finite_cost_);
   if (train) {
-    gq_.train(state.normalised, space_.encode(config),
-              GreedyGqPredictor::reward(options_.reward, cost, worst_finite_cost_));
+    gq_.train(state.normalised, space_.encode(config), reward);
+  } else {
+    gq_.remember(state.normalised, space_.encode(config), reward);
   }
 }
 

@@ -15,9 +15,9 @@
 // Every report, in either mode, is recorded (and written to the database) and trains both
 // predictors. Searches of states left half-way are kept and resumed when the state returns.
 //
-// Cost: suggest/report are O(parameters) hash lookups plus one RBF update (features ×
-// dimensions) and one SQLite transaction; a state change adds a scan of the known states and
-// the candidate list. See bench/tuner for measured latencies.
+// Cost: suggest/report are O(parameters) hash lookups plus 1 + options.gq.replays_per_sample
+// RBF updates (features × dimensions each) and one SQLite transaction; a state change adds a scan
+// of the known states and the candidate list. See bench/tuner for measured latencies.
 //
 // Not thread-safe: call from one thread (or guard it).
 #pragma once
@@ -154,7 +154,8 @@ class HybridTuner {
                                     const std::vector<double>& normalised) const;
   void start_search(StateData& state, const std::optional<Prediction>& prediction);
   void finish_search(StateData& state);
-  // Adds a measurement to the in-memory tables and, if `train`, to θ.
+  // Adds a measurement to the in-memory tables and, if `train`, to θ (otherwise only to the
+  // RBF predictor's replay memory).
   void record(StateData& state, const Config& config, double cost, bool train);
   // Re-chooses state.best after a measurement (see scores() for how noise is handled).
   void update_best(StateData& state);
