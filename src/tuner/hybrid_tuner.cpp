@@ -154,7 +154,26 @@ std::optional<HybridTuner::Prediction> HybridTuner::predict(
         return Prediction{*state->best, true};
       }
       if (!neighbour) return std::nullopt;
-      return Prediction{*rbf_choice(neighbour->config), known};
+      {
+        // The RBF overrides the nearest neighbour only if, at the neighbour's own state, it
+        // picks the configuration measured best there: a model that cannot reproduce its nearest
+        // data point (it cannot fit the problem) would spread one guess over every state.
+        std::vector<std::vector<double>> points = candidate_points_;
+        size_t neighbour_index = candidates_.size();
+        if (const auto it = std::find(candidates_.begin(), candidates_.end(), neighbour->config);
+            it != candidates_.end()) {
+          neighbour_index = static_cast<size_t>(it - candidates_.begin());
+        } else {
+          points.push_back(space_.encode(neighbour->config));
+        }
+        const size_t index = *gq_.best_candidate(normalised, points);
+        if (index == neighbour_index) return Prediction{neighbour->config, known};
+        const auto state_it = state_by_id_.find(neighbour->state_id);
+        const bool consistent = state_it != state_by_id_.end() &&
+                                gq_.best_candidate(state_it->second->normalised, points) ==
+                                    std::optional<size_t>(neighbour_index);
+        return Prediction{consistent ? candidates_[index] : neighbour->config, known};
+      }
   }
   return std::nullopt;
 }
