@@ -15,7 +15,8 @@ enum class PredictorKind {
   kNearestNeighbour,  // best configuration of the nearest known state
   kRbf,               // Greedy-GQ: argmax of Q over the configurations past searches found
   // The state's own best if it has been measured; otherwise Greedy-GQ's argmax over the
-  // candidates plus the nearest neighbour's configuration.
+  // candidates plus the nearest neighbour's configuration, if the model also picks the
+  // neighbour's configuration at the neighbour's own state (else the neighbour's configuration).
   kBoth,
 };
 
