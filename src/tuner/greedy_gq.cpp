@@ -51,10 +51,7 @@ void GreedyGqPredictor::train(std::span<const double> state, std::span<const dou
   if (memory_.empty()) return;
   for (int k = 0; k < options_.replays_per_sample; ++k) {
     // splitmix64 of the update count: uniform draws that a replay of the same samples repeats.
-    uint64_t z = updates_ * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
+    const uint64_t z = splitmix64_mix(updates_ * 0x9e3779b97f4a7c15ULL + 0x632be59bd9b4e019ULL);
     const Remembered& sample = memory_[z % memory_.size()];
     const std::span<const double> point(sample.point);
     features(point.first(state_dims_), point.subspan(state_dims_), scratch_);

@@ -133,47 +133,35 @@ std::optional<HybridTuner::Prediction> HybridTuner::predict(
     const StateData* state, const std::vector<double>& normalised) const {
   const std::optional<NeighbourPrediction> neighbour = nn_.predict(normalised);
   const bool known = neighbour && neighbour->known;
-  auto rbf_choice = [&](std::optional<Config> extra) -> std::optional<Config> {
-    std::vector<std::vector<double>> points = candidate_points_;
-    if (extra && !candidate_set_.count(*extra)) points.push_back(space_.encode(*extra));
-    const std::optional<size_t> index = gq_.best_candidate(normalised, points);
-    if (!index) return std::nullopt;
-    return *index < candidates_.size() ? candidates_[*index] : *extra;
-  };
   switch (options_.predictor) {
     case PredictorKind::kNearestNeighbour:
       if (!neighbour) return std::nullopt;
       return Prediction{neighbour->config, known};
-    case PredictorKind::kRbf:
-      if (std::optional<Config> choice = rbf_choice(std::nullopt)) {
-        return Prediction{*choice, known};
-      }
-      return std::nullopt;
-    case PredictorKind::kBoth:
+    case PredictorKind::kRbf: {
+      const std::optional<size_t> index = gq_.best_candidate(normalised, candidate_points_);
+      if (!index) return std::nullopt;
+      return Prediction{candidates_[*index], known};
+    }
+    case PredictorKind::kBoth: {
       if (state != nullptr && state->best && std::isfinite(state->best_cost)) {
         return Prediction{*state->best, true};
       }
       if (!neighbour) return std::nullopt;
-      {
-        // The RBF overrides the nearest neighbour only if, at the neighbour's own state, it
-        // picks the configuration measured best there: a model that cannot reproduce its nearest
-        // data point (it cannot fit the problem) would spread one guess over every state.
-        std::vector<std::vector<double>> points = candidate_points_;
-        size_t neighbour_index = candidates_.size();
-        if (const auto it = std::find(candidates_.begin(), candidates_.end(), neighbour->config);
-            it != candidates_.end()) {
-          neighbour_index = static_cast<size_t>(it - candidates_.begin());
-        } else {
-          points.push_back(space_.encode(neighbour->config));
-        }
-        const size_t index = *gq_.best_candidate(normalised, points);
-        if (index == neighbour_index) return Prediction{neighbour->config, known};
-        const auto state_it = state_by_id_.find(neighbour->state_id);
-        const bool consistent = state_it != state_by_id_.end() &&
-                                gq_.best_candidate(state_it->second->normalised, points) ==
-                                    std::optional<size_t>(neighbour_index);
-        return Prediction{consistent ? candidates_[index] : neighbour->config, known};
-      }
+      // The RBF overrides the nearest neighbour only if, at the neighbour's own state, it picks
+      // the configuration measured best there: a model that cannot reproduce its nearest data
+      // point (it cannot fit the problem) would spread one guess over every state.
+      std::vector<std::vector<double>> points = candidate_points_;
+      const auto it = std::find(candidates_.begin(), candidates_.end(), neighbour->config);
+      const auto neighbour_index = static_cast<size_t>(it - candidates_.begin());
+      if (it == candidates_.end()) points.push_back(space_.encode(neighbour->config));
+      const size_t index = *gq_.best_candidate(normalised, points);
+      if (index == neighbour_index) return Prediction{neighbour->config, known};
+      const auto state_it = state_by_id_.find(neighbour->state_id);
+      const bool consistent =
+          state_it != state_by_id_.end() &&
+          gq_.best_candidate(state_it->second->normalised, points) == neighbour_index;
+      return Prediction{consistent ? candidates_[index] : neighbour->config, known};
+    }
   }
   return std::nullopt;
 }

@@ -11,6 +11,13 @@
 
 namespace tuneray::tuner {
 
+// The output function of splitmix64: a bijective mix of 64 bits, e.g. to hash a counter.
+inline uint64_t splitmix64_mix(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
 // xoshiro256** (Blackman & Vigna), seeded through splitmix64.
 class Rng {
  public:
@@ -19,10 +26,7 @@ class Rng {
   void reseed(uint64_t seed) {
     for (auto& word : state_) {
       seed += 0x9e3779b97f4a7c15ULL;
-      uint64_t z = seed;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      word = z ^ (z >> 31);
+      word = splitmix64_mix(seed);
     }
   }
 
