@@ -21,6 +21,10 @@
 // mean over its copies. With a variable nothing reads it is an A/A run, which measures what the
 // placement of two identical trees alone does to a replay (2026-11-25 on this machine: 0.95 to
 // 1.08 with one copy each, conference and bunny).
+//
+// `--native-b PARAMS` replaces the tuned backend by a second native one built with these
+// parameters (e.g. `tri_accel=bvh4.triangle4`): Embree against Embree on the same rays.
+// `--camera N` records the render from the scene's camera N instead of its first.
 #include <tbb/global_control.h>
 #include <time.h>
 
@@ -36,6 +40,7 @@
 #include <vector>
 
 #include "accel/embree_native.h"
+#include "accel/factory.h"
 #include "accel/kernel_isa.h"
 #include "accel/tuned_bvh.h"
 #include "render/blue_noise_sampler.h"
@@ -160,12 +165,14 @@ int replay_main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: batch_replay SCENE [--scenes-dir D] [--bvh C] [--size WxH] [--spp N] "
                  "[--repeats R] [--only camera|bounce|shadow] [--pollute KiB] [--single 0|1] "
-                 "[--ab-env VAR=VALUE] [--ab-copies N]\n");
+                 "[--ab-env VAR=VALUE] [--ab-copies N] [--native-b PARAMS] [--camera N]\n");
     return argc < 2 ? 2 : 0;
   }
-  std::string scene_spec = argv[1], scenes_dir, bvh, ab_env;
+  std::string scene_spec = argv[1], scenes_dir, bvh, ab_env, native_b;
+  bool has_native_b = false;
   int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0, ab_copies = 1;
   int only = -1;
+  long camera = 0;
   if ((argc - 2) % 2 != 0) {
     std::fprintf(stderr, "batch_replay: option %s needs a value\n", argv[argc - 1]);
     return 2;
@@ -181,6 +188,14 @@ int replay_main(int argc, char** argv) {
         std::tie(width, height) = parse_size(value);
       } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "batch_replay: %s\n", e.what());
+        return 2;
+      }
+    } else if (key == "--camera") {
+      char* end = nullptr;
+      camera = std::strtol(value.c_str(), &end, 10);
+      if (end == value.c_str() || *end != '\0' || camera < 0) {
+        std::fprintf(stderr, "batch_replay: --camera takes a camera index, not '%s'\n",
+                     value.c_str());
         return 2;
       }
     } else if (key == "--spp" || key == "--repeats" || key == "--pollute") {
@@ -204,6 +219,9 @@ int replay_main(int argc, char** argv) {
       }
     } else if (key == "--ab-env") {
       ab_env = value;
+    } else if (key == "--native-b") {
+      native_b = value;
+      has_native_b = true;
     } else if (key == "--ab-copies") {
       ab_copies = std::max(1, std::atoi(value.c_str()));
     } else if (key == "--single") {
@@ -223,6 +241,12 @@ int replay_main(int argc, char** argv) {
   native.build(g);
   TunedBvhAccel tuned(parse_bvh_config(bvh));
   tuned.build(g);
+  std::unique_ptr<Accel> second;
+  if (has_native_b) {
+    second = make_accel("native", native_b);
+    second->build(g);
+    std::printf("second backend (the tuned column): native %s\n", second->describe().c_str());
+  }
   // --ab-env VAR=VALUE: a second tuned backend built with that environment variable set, replayed
   // in the same rotation (an A/B of a library switch on the same rays in one process).
   // Each variant is built --ab-copies times (trees at different addresses, whose cache and page
@@ -247,7 +271,13 @@ int replay_main(int argc, char** argv) {
   settings.width = width;
   settings.height = height;
   std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, 0);
-  TileRenderer renderer(scene, recorder, scene.cameras.at(0), settings, *sampler);
+  if (static_cast<size_t>(camera) >= scene.cameras.size()) {
+    std::fprintf(stderr, "batch_replay: %s has %zu camera(s); --camera %ld is not one of them\n",
+                 scene_spec.c_str(), scene.cameras.size(), camera);
+    return 2;
+  }
+  TileRenderer renderer(scene, recorder, scene.cameras[static_cast<size_t>(camera)], settings,
+                        *sampler);
   Film film(width, height);
   for (int s = 0; s < spp; ++s) renderer.render_pass(film, static_cast<uint32_t>(s), 1);
   size_t rays[kPhases] = {};
@@ -266,7 +296,8 @@ int replay_main(int argc, char** argv) {
   SingleRayAccel native_single(native);
   std::vector<double> times[4][kPhases];
   uint64_t sums[4] = {};
-  std::vector<const Accel*> group[4] = {{&native}, {&tuned}, {&native_single}, {}};
+  std::vector<const Accel*> group[4] = {
+      {&native}, {second ? second.get() : &tuned}, {&native_single}, {}};
   for (const auto& c : copies_a) group[1].push_back(c.get());
   for (const auto& c : copies_b) group[3].push_back(c.get());
   for (int r = -1; r < repeats; ++r) {  // r = -1 warms up

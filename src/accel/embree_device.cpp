@@ -1,5 +1,6 @@
 #include "accel/embree_device.h"
 
+#include <map>
 #include <mutex>
 #include <stdexcept>
 
@@ -56,6 +57,18 @@ std::string EmbreeDevice::take_error() {
 
 std::shared_ptr<EmbreeDevice> EmbreeDevice::shared() {
   static std::shared_ptr<EmbreeDevice> device = std::make_shared<EmbreeDevice>();
+  return device;
+}
+
+std::shared_ptr<EmbreeDevice> EmbreeDevice::shared(const std::string& config) {
+  if (config.empty()) return shared();
+  static std::mutex mutex;
+  static std::map<std::string, std::weak_ptr<EmbreeDevice>> devices;
+  std::lock_guard lock(mutex);
+  std::weak_ptr<EmbreeDevice>& slot = devices[config];
+  if (auto device = slot.lock()) return device;
+  auto device = std::make_shared<EmbreeDevice>(config);
+  slot = device;
   return device;
 }
 

@@ -23,6 +23,10 @@ class EmbreeDevice {
   std::string take_error();
 
   static std::shared_ptr<EmbreeDevice> shared();
+  // The device of this configuration string, one per distinct string while any user holds it
+  // ("" is shared()). Embree reads some choices only per device (the triangle BVH's kind and
+  // builder: tri_accel, tri_builder), so a backend asking for them needs its own device.
+  static std::shared_ptr<EmbreeDevice> shared(const std::string& config);
 
  private:
   static void on_error(void* user, RTCError code, const char* message);

@@ -54,6 +54,44 @@ inline bool from_rtc_hit(const RTCRayHit& rh, Hit& hit) {
 }
 }  // namespace
 
+// Embree 3.13 also names quantized BVHs (qbvh4.triangle4i, qbvh8.triangle4, qbvh8.triangle4i),
+// but they have no stream intersector: rtcIntersect1M on them fails an assertion inside Embree.
+const std::vector<std::string>& native_tri_accels() {
+  static const std::vector<std::string> names = {"bvh4.triangle4",  "bvh4.triangle4v",
+                                                 "bvh4.triangle4i", "bvh8.triangle4",
+                                                 "bvh8.triangle4v", "bvh8.triangle4i"};
+  return names;
+}
+
+const std::vector<std::string>& native_tri_builders() {
+  static const std::vector<std::string> names = {"sah", "sah_fast_spatial", "sah_presplit"};
+  return names;
+}
+
+std::string NativeOptions::device_config() const {
+  std::string config;
+  if (!tri_accel.empty()) config.append("tri_accel=").append(tri_accel);
+  if (!tri_builder.empty()) {
+    if (!config.empty()) config.push_back(',');
+    config.append("tri_builder=").append(tri_builder);
+  }
+  return config;
+}
+
+std::string NativeOptions::problem() const {
+  if (tri_accel.empty() && tri_builder.empty()) return "";
+  const auto known = [](const std::vector<std::string>& names, const std::string& name) {
+    return name.empty() || std::find(names.begin(), names.end(), name) != names.end();
+  };
+  if (!known(native_tri_accels(), tri_accel)) return "unknown tri_accel '" + tri_accel + "'";
+  if (!known(native_tri_builders(), tri_builder))
+    return "unknown tri_builder '" + tri_builder + "'";
+  if (quality != RTC_BUILD_QUALITY_MEDIUM || robust || compact || dynamic)
+    return "tri_accel and tri_builder go only with quality=medium, robust=0, compact=0 and "
+           "dynamic=0 (Embree builds a named BVH at its static medium settings)";
+  return "";
+}
+
 EmbreeNativeAccel::EmbreeNativeAccel(NativeOptions options, std::shared_ptr<EmbreeDevice> device)
     : options_(options), device_(std::move(device)) {}
 
@@ -64,20 +102,30 @@ EmbreeNativeAccel::~EmbreeNativeAccel() {
 void EmbreeNativeAccel::release() {
   if (scene_) rtcReleaseScene(scene_);
   scene_ = nullptr;
+  scene_device_.reset();
 }
 
 std::string EmbreeNativeAccel::describe() const {
-  return std::string("quality=") + quality_name(options_.quality) +
-         ",robust=" + (options_.robust ? "1" : "0") + ",compact=" + (options_.compact ? "1" : "0") +
-         ",dynamic=" + (options_.dynamic ? "1" : "0");
+  std::string text = std::string("quality=") + quality_name(options_.quality) +
+                     ",robust=" + (options_.robust ? "1" : "0") +
+                     ",compact=" + (options_.compact ? "1" : "0") +
+                     ",dynamic=" + (options_.dynamic ? "1" : "0");
+  if (!options_.tri_accel.empty()) text += ",tri_accel=" + options_.tri_accel;
+  if (!options_.tri_builder.empty()) text += ",tri_builder=" + options_.tri_builder;
+  return text;
 }
 
 BuildStats EmbreeNativeAccel::build(const GeometryView& geometry) {
   release();
-  device_->take_error();
+  if (const std::string problem = options_.problem(); !problem.empty())
+    throw BuildError("Embree native: " + problem);
   auto start = std::chrono::steady_clock::now();
+  const std::string config = options_.device_config();
+  scene_device_ = config.empty() ? device_ : EmbreeDevice::shared(config);
+  EmbreeDevice& device = *scene_device_;
+  device.take_error();
 
-  RTCDevice dev = device_->get();
+  RTCDevice dev = device.get();
   scene_ = rtcNewScene(dev);
   int flags = RTC_SCENE_FLAG_NONE;
   if (options_.robust) flags |= RTC_SCENE_FLAG_ROBUST;
@@ -98,7 +146,7 @@ BuildStats EmbreeNativeAccel::build(const GeometryView& geometry) {
     if (!vertices || !indices) {
       rtcReleaseGeometry(geom);
       release();
-      throw BuildError("Embree native build failed: " + device_->take_error());
+      throw BuildError("Embree native build failed: " + device.take_error());
     }
     std::copy_n(geometry.positions, geometry.vertex_count, vertices);
     std::copy_n(geometry.triangles, geometry.triangle_count, indices);
@@ -109,7 +157,7 @@ BuildStats EmbreeNativeAccel::build(const GeometryView& geometry) {
   }
   rtcCommitScene(scene_);
 
-  std::string error = device_->take_error();
+  std::string error = device.take_error();
   if (!error.empty()) {
     release();
     throw BuildError("Embree native build failed: " + error);

@@ -5,6 +5,8 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "accel/accel.h"
 #include "accel/embree_device.h"
@@ -16,7 +18,25 @@ struct NativeOptions {
   bool robust = false;   // RTC_SCENE_FLAG_ROBUST
   bool compact = false;  // RTC_SCENE_FLAG_COMPACT
   bool dynamic = false;  // RTC_SCENE_FLAG_DYNAMIC
+  // Embree's device-level choices for triangle meshes (its `tri_accel` and `tri_builder`), empty
+  // for Embree's default: the BVH's width and leaf kind (e.g. bvh4.triangle4v) and its builder
+  // (e.g. sah_presplit). A backend that sets either builds on a device of its own.
+  std::string tri_accel;
+  std::string tri_builder;
+
+  // The rtcNewDevice string of the two choices above ("" when both are Embree's default).
+  std::string device_config() const;
+  // Why these options cannot be built as asked, or "" when they can. Embree builds a named
+  // tri_accel at its static medium settings and ignores the scene's quality and flags, so a
+  // named BVH or builder goes only with quality=medium and no robust, compact or dynamic flag
+  // (robust=1 would otherwise silently not be robust).
+  std::string problem() const;
 };
+
+// The values NativeOptions::tri_accel and tri_builder accept (Embree 3.13's static triangle
+// BVHs and their builders); anything else is refused before Embree sees it.
+const std::vector<std::string>& native_tri_accels();
+const std::vector<std::string>& native_tri_builders();
 
 class EmbreeNativeAccel final : public Accel {
  public:
@@ -40,6 +60,8 @@ class EmbreeNativeAccel final : public Accel {
   void release();
   NativeOptions options_;
   std::shared_ptr<EmbreeDevice> device_;
+  // The device the scene was built on: device_, or one of options_.device_config().
+  std::shared_ptr<EmbreeDevice> scene_device_;
   RTCScene scene_ = nullptr;
 };
 

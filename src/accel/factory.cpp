@@ -1,5 +1,6 @@
 #include "accel/factory.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "accel/embree_native.h"
@@ -34,12 +35,24 @@ NativeOptions parse_native_options(const std::map<std::string, std::string>& kv)
       o.compact = parse_bool(key, value);
     } else if (key == "dynamic") {
       o.dynamic = parse_bool(key, value);
+    } else if (key == "tri_accel" || key == "tri_builder") {
+      const auto& valid = key == "tri_accel" ? native_tri_accels() : native_tri_builders();
+      if (std::find(valid.begin(), valid.end(), value) == valid.end()) {
+        std::string names;
+        for (const auto& n : valid) names += (names.empty() ? "" : "|") + n;
+        throw std::invalid_argument("parameter '" + key + "': expected " + names + ", got '" +
+                                    value + "'");
+      }
+      (key == "tri_accel" ? o.tri_accel : o.tri_builder) = value;
     } else {
       throw std::invalid_argument("unknown parameter '" + key +
                                   "' for the native backend; valid: quality=low|medium|high, "
-                                  "robust=0|1, compact=0|1, dynamic=0|1");
+                                  "robust=0|1, compact=0|1, dynamic=0|1, tri_accel=NAME, "
+                                  "tri_builder=NAME");
     }
   }
+  if (const std::string problem = o.problem(); !problem.empty())
+    throw std::invalid_argument("native backend: " + problem);
   return o;
 }
 }  // namespace
