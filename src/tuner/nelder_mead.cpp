@@ -19,6 +19,15 @@ constexpr int kFreeIterationFactor = 10;
 // Consecutive restarts from a small simplex that did not improve the incumbent before the
 // search is declared converged: one can fail by bad luck with noisy costs, two rarely do.
 constexpr int kStaleRestartLimit = 2;
+// Points remembered for restarts in a conditional space, per simplex vertex.
+constexpr size_t kArchivePerVertex = 2;
+
+bool has_conditions(const Space& space) {
+  for (size_t i = 0; i < space.size(); ++i) {
+    if (space.param(i).active_when) return true;
+  }
+  return false;
+}
 
 double distance(const std::vector<double>& a, const std::vector<double>& b) {
   double sum = 0.0;
@@ -59,7 +68,8 @@ NelderMead::NelderMead(const Space& space, const NelderMeadOptions& options,
 }
 
 void NelderMead::build_simplex(const std::vector<double>& centre, double radius,
-                               std::vector<std::vector<double>> seeds) {
+                               std::vector<std::vector<double>> seeds,
+                               const std::vector<size_t>& wide) {
   const size_t dims = centre.size();
   vertices_.assign(1, centre);
   // Seeds first (as configurations: two points that round to one configuration are one seed).
@@ -79,13 +89,70 @@ void NelderMead::build_simplex(const std::vector<double>& centre, double radius,
       // still reaches the neighbouring values instead of sitting on one plateau.
       const size_t cells = space_->param(d).cardinality();
       const double cell = cells > 0 ? 1.0 / static_cast<double>(cells) : 0.0;
-      const double width = std::min(1.0, 2.0 * std::max(radius, cell));
+      const bool is_wide = std::find(wide.begin(), wide.end(), d) != wide.end();
+      const double r = is_wide ? std::max(radius, options_.initial_radius) : radius;
+      const double width = std::min(1.0, 2.0 * std::max(r, cell));
       const double lo = std::clamp(centre[d] - 0.5 * width, 0.0, 1.0 - width);
       unit[d] = lo + width * unit[d];
     }
     space_->feasible(unit);
     vertices_.push_back(std::move(unit));
   }
+}
+
+void NelderMead::remember_vertices(const Lookup& lookup) {
+  if (!has_conditions(*space_)) return;
+  std::vector<Config> known;
+  known.reserve(archive_.size() + vertices_.size());
+  for (const auto& point : archive_) known.push_back(space_->decode(point));
+  for (const auto& vertex : vertices_) {
+    Config config = space_->decode(vertex);
+    if (std::find(known.begin(), known.end(), config) != known.end()) continue;
+    known.push_back(std::move(config));
+    archive_.push_back(vertex);
+  }
+  const size_t capacity = kArchivePerVertex * vertices_.size();
+  if (archive_.size() <= capacity) return;
+  std::vector<std::pair<double, size_t>> order(archive_.size());
+  for (size_t i = 0; i < archive_.size(); ++i) order[i] = {value(lookup, archive_[i]), i};
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::vector<double>> kept;
+  kept.reserve(capacity);
+  for (size_t i = 0; i < capacity; ++i) kept.push_back(std::move(archive_[order[i].second]));
+  archive_ = std::move(kept);
+}
+
+std::vector<double> NelderMead::restart_centre(const Lookup& lookup,
+                                               std::vector<size_t>& across) const {
+  across.clear();
+  std::vector<double> centre = vertices_[0];
+  const Config incumbent = space_->decode(centre);
+  std::vector<size_t> inactive;
+  for (size_t d = 0; d < centre.size(); ++d) {
+    if (!space_->is_active(incumbent, d)) inactive.push_back(d);
+  }
+  if (inactive.empty()) return centre;
+  const std::vector<double>* donor = nullptr;
+  double donor_cost = kInfinity;
+  for (const auto& point : archive_) {
+    const Config config = space_->decode(point);
+    const bool activates = std::any_of(inactive.begin(), inactive.end(),
+                                       [&](size_t d) { return space_->is_active(config, d); });
+    if (!activates) continue;
+    const double cost = value(lookup, point);
+    if (cost < donor_cost) {
+      donor_cost = cost;
+      donor = &point;
+    }
+  }
+  // Inactive coordinates do not change what the centre decodes to, only where the restart's
+  // box reaches across the condition.
+  if (donor != nullptr) {
+    for (size_t d : inactive) centre[d] = (*donor)[d];
+    across = std::move(inactive);
+  }
+  return centre;
 }
 
 double NelderMead::size() const {
@@ -189,6 +256,7 @@ std::optional<Config> NelderMead::advance(const Lookup& lookup) {
           if (needs_measurement(lookup, config, repeats_)) return config;
         }
         sort_vertices(lookup);
+        remember_vertices(lookup);
         Config incumbent = space_->decode(vertices_[0]);
         if (needs_measurement(lookup, incumbent, repeats_ + 1)) return incumbent;
 
@@ -214,7 +282,9 @@ std::optional<Config> NelderMead::advance(const Lookup& lookup) {
           }
           ++restarts_;
           restart_cost_ = incumbent_cost;
-          build_simplex(vertices_[0], options_.initial_radius * std::pow(0.5, restarts_));
+          std::vector<size_t> across;
+          const std::vector<double> centre = restart_centre(lookup, across);
+          build_simplex(centre, options_.initial_radius * std::pow(0.5, restarts_), {}, across);
           continue;
         }
         if (degenerate()) {
@@ -225,7 +295,9 @@ std::optional<Config> NelderMead::advance(const Lookup& lookup) {
           ++restarts_;
           const double radius =
               std::clamp(current_size, 4.0 * options_.x_tolerance, options_.initial_radius);
-          build_simplex(vertices_[0], radius);
+          std::vector<size_t> across;
+          const std::vector<double> centre = restart_centre(lookup, across);
+          build_simplex(centre, radius, {}, across);
           continue;
         }
         const int wanted = repeats_for(current_size);
@@ -298,20 +370,25 @@ std::optional<Config> NelderMead::advance(const Lookup& lookup) {
 
 std::string NelderMead::serialise() const {
   TokenWriter out;
-  out.put_word("nm1").put(static_cast<int>(phase_)).put(outside_contraction_).put(converged_);
+  out.put_word("nm2").put(static_cast<int>(phase_)).put(outside_contraction_).put(converged_);
   out.put(iterations_).put(charged_iterations_).put(requests_).put(requests_at_iteration_start_);
   out.put(restarts_).put(repeats_).put(initial_size_).put(restart_cost_).put(stale_restarts_);
   out.put(rng_);
   out.put(centroid_).put(reflected_).put(trial_);
   out.put(static_cast<int64_t>(vertices_.size()));
   for (const auto& v : vertices_) out.put(v);
+  out.put(static_cast<int64_t>(archive_.size()));
+  for (const auto& point : archive_) out.put(point);
   return out.str();
 }
 
 NelderMead NelderMead::deserialise(const Space& space, const NelderMeadOptions& options,
                                    std::string_view text) {
   TokenReader in(text);
-  if (in.get_word() != "nm1") throw std::runtime_error("not a Nelder-Mead search state");
+  // nm1: the states saved before restarts remembered points (read with an empty archive).
+  const std::string version = in.get_word();
+  if (version != "nm1" && version != "nm2")
+    throw std::runtime_error("not a Nelder-Mead search state");
   NelderMead search(space, options);
   const int64_t phase = in.get_int();
   if (phase < 0 || phase > static_cast<int>(Phase::kDone)) {
@@ -341,6 +418,19 @@ NelderMead NelderMead::deserialise(const Space& space, const NelderMeadOptions& 
     search.vertices_.push_back(in.get_doubles());
     if (search.vertices_.back().size() != space.size()) {
       throw std::runtime_error("Nelder-Mead search state does not match the space");
+    }
+  }
+  if (version == "nm2") {
+    const int64_t remembered = in.get_int();
+    if (remembered < 0 ||
+        remembered > static_cast<int64_t>(kArchivePerVertex * search.vertices_.size())) {
+      throw std::runtime_error("bad archive size in Nelder-Mead search state");
+    }
+    for (int64_t i = 0; i < remembered; ++i) {
+      search.archive_.push_back(in.get_doubles());
+      if (search.archive_.back().size() != space.size()) {
+        throw std::runtime_error("Nelder-Mead search state does not match the space");
+      }
     }
   }
   return search;

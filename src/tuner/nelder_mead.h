@@ -42,6 +42,16 @@
 //   initial_radius / 2^restarts); the search has converged when two restarts in a row did not
 //   improve the incumbent's median (or max_restarts is reached). A value
 //   tolerance is not used because with noisy costs close values do not mean convergence.
+// - Conditional parameters: a point's coordinates of inactive parameters mean nothing (they
+//   decode to the default), yet a restart's box is drawn around them. So the search keeps the
+//   best points it has compared (up to 2(n+1), by their current medians), and a restart around an
+//   incumbent with inactive parameters takes their coordinates from the best remembered point in
+//   which some of them are active, with a box of at least `initial_radius` along them (nothing
+//   has been narrowed down there). Without it a search whose incumbent moved into a branch that
+//   switches most parameters off (e.g. another backend with none of them) restarted around
+//   coordinates it never measured (the start point's) in ever smaller boxes and declared
+//   convergence there after two stale restarts. The incumbent's configuration is unchanged by
+//   this; only where a restart looks across the condition is.
 #pragma once
 
 #include <functional>
@@ -108,13 +118,22 @@ class NelderMead {
 
   NelderMead(const Space& space, const NelderMeadOptions& options);
   std::optional<Config> advance(const Lookup& lookup);
+  // `wide` lists coordinates whose box keeps at least initial_radius (those a restart took from
+  // another branch's best point: nothing there has been narrowed down yet).
   void build_simplex(const std::vector<double>& centre, double radius,
-                     std::vector<std::vector<double>> seeds = {});
+                     std::vector<std::vector<double>> seeds = {},
+                     const std::vector<size_t>& wide = {});
   bool needs_measurement(const Lookup& lookup, const Config& config, int repeats) const;
   double value(const Lookup& lookup, const std::vector<double>& point) const;
   void sort_vertices(const Lookup& lookup);
   bool collapsed() const;
   bool degenerate() const;
+  // Adds the vertices' points to archive_ (conditional spaces only), keeping the best.
+  void remember_vertices(const Lookup& lookup);
+  // The incumbent's point with its inactive coordinates taken from the best archived point in
+  // which some of them are active (see the header comment); `across` gets those coordinates
+  // (empty when none were taken).
+  std::vector<double> restart_centre(const Lookup& lookup, std::vector<size_t>& across) const;
   int repeats_for(double size) const;
   std::vector<double> along(const std::vector<double>& from, const std::vector<double>& to,
                             double t) const;  // feasible from + t (to - from)
@@ -139,6 +158,7 @@ class NelderMead {
   double initial_size_ = 0.0;
   int stale_restarts_ = 0;
   double restart_cost_ = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<double>> archive_;  // best points compared so far (conditional spaces)
 };
 
 // Median of recorded costs; +infinity if any is a failure or the list is empty.

@@ -193,6 +193,11 @@ Config Space::canonical(const Config& config) const {
   return changed ? result : config;
 }
 
+bool Space::is_active(const Config& config, size_t index) const {
+  const ParamSpec& p = (*params_).at(index);
+  return !p.active_when || p.active_when(config);
+}
+
 Config Space::decode(std::span<const double> point) const {
   if (point.size() != size()) throw std::invalid_argument("Space::decode: wrong dimension");
   std::vector<double> values(size());

@@ -64,6 +64,9 @@ class Space {
   std::vector<double> encode(const Config& config) const;
   // Applies conditions (pinning inactive parameters to their defaults).
   Config canonical(const Config& config) const;
+  // Whether parameter `index` is active in `config` (its condition holds; always for a parameter
+  // without one). `config` should be canonical, as decode() and parse() return.
+  bool is_active(const Config& config, size_t index) const;
   bool satisfies_constraints(const Config& config) const;
   // Clamps `point` to [0,1]^n and, if its configuration violates a constraint, replaces it by
   // the first feasible point on the segment from it to the default (20 evenly spaced steps; the
