@@ -21,7 +21,7 @@ using testing::run_search;
 constexpr const char* kParams[] = {"p0", "p1", "p2", "p3", "p4", "p5"};
 
 // Two branches, as the BVH tuner's backends: "fixed" has no parameters and costs 1; "tuned" has
-// six, its cost a bowl of minimum 0.9 around p = 0.5 that reaches 1.68 at the start point (every
+// six, its cost a bowl of minimum 0.9 around p = 0.5 that reaches 1.67 at the start point (every
 // p at 0.1). Only the first simplex's points nearest the bowl come close to 1, so the search
 // usually moves to "fixed" first, with few good tuned points measured.
 Space two_branch_space() {
