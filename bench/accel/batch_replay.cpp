@@ -34,6 +34,7 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -168,8 +169,8 @@ int replay_main(int argc, char** argv) {
                  "[--ab-env VAR=VALUE] [--ab-copies N] [--native-b PARAMS] [--camera N]\n");
     return argc < 2 ? 2 : 0;
   }
-  std::string scene_spec = argv[1], scenes_dir, bvh, ab_env, native_b;
-  bool has_native_b = false;
+  std::string scene_spec = argv[1], scenes_dir, bvh, ab_env;
+  std::optional<std::string> native_b;
   int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0, ab_copies = 1;
   int only = -1;
   long camera = 0;
@@ -221,7 +222,6 @@ int replay_main(int argc, char** argv) {
       ab_env = value;
     } else if (key == "--native-b") {
       native_b = value;
-      has_native_b = true;
     } else if (key == "--ab-copies") {
       ab_copies = std::max(1, std::atoi(value.c_str()));
     } else if (key == "--single") {
@@ -242,8 +242,8 @@ int replay_main(int argc, char** argv) {
   TunedBvhAccel tuned(parse_bvh_config(bvh));
   tuned.build(g);
   std::unique_ptr<Accel> second;
-  if (has_native_b) {
-    second = make_accel("native", native_b);
+  if (native_b) {
+    second = make_accel("native", *native_b);
     second->build(g);
     std::printf("second backend (the tuned column): native %s\n", second->describe().c_str());
   }

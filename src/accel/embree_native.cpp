@@ -80,12 +80,16 @@ std::string NativeOptions::device_config() const {
 
 std::string NativeOptions::problem() const {
   if (tri_accel.empty() && tri_builder.empty()) return "";
-  const auto known = [](const std::vector<std::string>& names, const std::string& name) {
-    return name.empty() || std::find(names.begin(), names.end(), name) != names.end();
+  const auto unknown = [](const char* key, const std::vector<std::string>& names,
+                          const std::string& name) -> std::string {
+    if (name.empty() || std::find(names.begin(), names.end(), name) != names.end()) return "";
+    std::string valid;
+    for (const auto& n : names) valid += (valid.empty() ? "" : "|") + n;
+    return std::string("parameter '") + key + "': expected " + valid + ", got '" + name + "'";
   };
-  if (!known(native_tri_accels(), tri_accel)) return "unknown tri_accel '" + tri_accel + "'";
-  if (!known(native_tri_builders(), tri_builder))
-    return "unknown tri_builder '" + tri_builder + "'";
+  if (std::string e = unknown("tri_accel", native_tri_accels(), tri_accel); !e.empty()) return e;
+  if (std::string e = unknown("tri_builder", native_tri_builders(), tri_builder); !e.empty())
+    return e;
   if (quality != RTC_BUILD_QUALITY_MEDIUM || robust || compact || dynamic)
     return "tri_accel and tri_builder go only with quality=medium, robust=0, compact=0 and "
            "dynamic=0 (Embree builds a named BVH at its static medium settings)";

@@ -1,6 +1,5 @@
 #include "accel/factory.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include "accel/embree_native.h"
@@ -35,15 +34,10 @@ NativeOptions parse_native_options(const std::map<std::string, std::string>& kv)
       o.compact = parse_bool(key, value);
     } else if (key == "dynamic") {
       o.dynamic = parse_bool(key, value);
-    } else if (key == "tri_accel" || key == "tri_builder") {
-      const auto& valid = key == "tri_accel" ? native_tri_accels() : native_tri_builders();
-      if (std::find(valid.begin(), valid.end(), value) == valid.end()) {
-        std::string names;
-        for (const auto& n : valid) names += (names.empty() ? "" : "|") + n;
-        throw std::invalid_argument("parameter '" + key + "': expected " + names + ", got '" +
-                                    value + "'");
-      }
-      (key == "tri_accel" ? o.tri_accel : o.tri_builder) = value;
+    } else if (key == "tri_accel") {
+      o.tri_accel = value;  // checked with the rest by NativeOptions::problem() below
+    } else if (key == "tri_builder") {
+      o.tri_builder = value;
     } else {
       throw std::invalid_argument("unknown parameter '" + key +
                                   "' for the native backend; valid: quality=low|medium|high, "

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 #include "test_functions.h"
 #include "tuner/nelder_mead.h"
@@ -15,6 +14,8 @@
 namespace tuneray::tuner {
 namespace {
 
+using testing::CostTable;
+using testing::expect_same_requests;
 using testing::gaussian;
 using testing::run_search;
 
@@ -66,27 +67,17 @@ TEST(NelderMeadConditions, RestartsLookAcrossTheConditionFromTheBestPointMeasure
 TEST(NelderMeadConditions, SerialisedSearchKeepsItsRememberedPoints) {
   const Space space = two_branch_space();
   NelderMead original(space, NelderMeadOptions{}, space.encode(space.default_config()), 3);
-  std::unordered_map<Config, std::vector<double>> table;
-  const NelderMead::Lookup lookup = [&](const Config& c) -> const std::vector<double>* {
-    const auto it = table.find(c);
-    return it == table.end() ? nullptr : &it->second;
-  };
+  CostTable table;
+  const NelderMead::Lookup lookup = table.lookup();
   for (int i = 0; i < 40; ++i) {
     const auto next = original.next(lookup);
     if (!next) break;
-    table[*next].push_back(two_branch_cost(*next));
+    table.costs[*next].push_back(two_branch_cost(*next));
   }
   const std::string saved = original.serialise();
   NelderMead copy = NelderMead::deserialise(space, NelderMeadOptions{}, saved);
   EXPECT_EQ(copy.serialise(), saved);
-  for (int i = 0; i < 60; ++i) {
-    const auto a = original.next(lookup);
-    const auto b = copy.next(lookup);
-    ASSERT_EQ(a.has_value(), b.has_value());
-    if (!a) break;
-    EXPECT_EQ(*a, *b);
-    table[*a].push_back(two_branch_cost(*a));
-  }
+  expect_same_requests(original, copy, table, two_branch_cost, 60);
 }
 
 // A state saved before the archive existed ("nm1": the same fields without the remembered
@@ -100,19 +91,8 @@ TEST(NelderMeadConditions, StatesSavedBeforeTheArchiveStillLoad) {
   const std::string old = "nm1" + saved.substr(3, saved.size() - 5);
   NelderMead loaded = NelderMead::deserialise(space, NelderMeadOptions{}, old);
   EXPECT_EQ(loaded.serialise(), saved);
-  std::unordered_map<Config, std::vector<double>> table;
-  const NelderMead::Lookup lookup = [&](const Config& c) -> const std::vector<double>* {
-    const auto it = table.find(c);
-    return it == table.end() ? nullptr : &it->second;
-  };
-  for (int i = 0; i < 50; ++i) {
-    const auto a = search.next(lookup);
-    const auto b = loaded.next(lookup);
-    ASSERT_EQ(a.has_value(), b.has_value());
-    if (!a) break;
-    EXPECT_EQ(*a, *b);
-    table[*a].push_back(two_branch_cost(*a));
-  }
+  CostTable table;
+  expect_same_requests(search, loaded, table, two_branch_cost, 50);
   EXPECT_THROW(NelderMead::deserialise(space, NelderMeadOptions{}, "nm3" + saved.substr(3)),
                std::runtime_error);
 }

@@ -208,26 +208,16 @@ TEST(NelderMead, SerialisedSearchContinuesIdentically) {
            (c.get_enum("e") == "q" ? 0.0 : 0.5);
   };
   NelderMead original(space, NelderMeadOptions{}, space.encode(space.default_config()), 5);
-  std::unordered_map<Config, std::vector<double>> table;
-  const NelderMead::Lookup lookup = [&](const Config& c) -> const std::vector<double>* {
-    const auto it = table.find(c);
-    return it == table.end() ? nullptr : &it->second;
-  };
+  testing::CostTable table;
+  const NelderMead::Lookup lookup = table.lookup();
   for (int i = 0; i < 15; ++i) {
     const auto next = original.next(lookup);
     ASSERT_TRUE(next);
-    table[*next].push_back(cost(*next));
+    table.costs[*next].push_back(cost(*next));
   }
   NelderMead copy = NelderMead::deserialise(space, NelderMeadOptions{}, original.serialise());
   EXPECT_EQ(copy.serialise(), original.serialise());
-  for (int i = 0; i < 30; ++i) {
-    const auto a = original.next(lookup);
-    const auto b = copy.next(lookup);
-    ASSERT_EQ(a.has_value(), b.has_value());
-    if (!a) break;
-    EXPECT_EQ(*a, *b);
-    table[*a].push_back(cost(*a));
-  }
+  testing::expect_same_requests(original, copy, table, cost, 30);
 }
 
 }  // namespace
