@@ -32,9 +32,14 @@ void add_bvh_params(tuner::Space& space, const Predicate& tuned) {
   Predicate sah = tuner::Space::when_enum_not("quality", {"low"});
   Predicate sah_only =
       !tuned ? sah : Predicate([tuned, sah](const tuner::Config& c) { return tuned(c) && sah(c); });
-  space.add_condition("sah_block_size", sah_only)
-      .add_condition("max_leaf", sah_only)
-      .add_condition("cost_ratio", sah_only);
+  space.add_condition("sah_block_size", sah_only).add_condition("cost_ratio", sah_only);
+  // max_leaf shapes Morton trees too: within 8 levels of max_depth Embree's Morton builder stops
+  // splitting at Morton bits and cuts balanced subtrees down to leaves of up to max_leaf
+  // primitives (the fastest build + render trees of the paper runs are such trees). The BVH-only
+  // space keeps a condition that always holds: its description, which marks conditional
+  // parameters, is what its databases hold.
+  space.add_condition("max_leaf",
+                      tuned ? tuned : Predicate([](const tuner::Config&) { return true; }));
   space.add_constraint("min_leaf <= max_leaf", [](const tuner::Config& c) {
     return c.get_int("min_leaf") <= c.get_int("max_leaf");
   });

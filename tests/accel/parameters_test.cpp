@@ -95,6 +95,23 @@ TEST_F(Parameters, MaxLeafBoundsLeafSize) {
   EXPECT_LE(large.tree.max_leaf_size, 32u);
 }
 
+// Embree's Morton builder splits at Morton bits down to 8 levels above max_depth and cuts what is
+// left there into balanced subtrees with leaves of up to max_leaf primitives; a deep limit leaves
+// no such subtrees, and max_leaf then changes nothing.
+TEST_F(Parameters, MortonUsesMaxLeafOnlyNearTheDepthLimit) {
+  Built small = build("quality=low,branching=2,max_depth=16,max_leaf=4");
+  Built large = build("quality=low,branching=2,max_depth=16,max_leaf=32");
+  EXPECT_LE(small.tree.max_leaf_size, 4u);
+  EXPECT_GT(large.tree.max_leaf_size, 4u);
+  EXPECT_LE(large.tree.max_leaf_size, 32u);
+  EXPECT_GT(small.stats.leaf_count, large.stats.leaf_count * 3);
+  Built deep_small = build("quality=low,branching=2,max_depth=64,max_leaf=4");
+  Built deep_large = build("quality=low,branching=2,max_depth=64,max_leaf=32");
+  EXPECT_EQ(deep_small.stats.leaf_count, deep_large.stats.leaf_count);
+  EXPECT_EQ(deep_small.stats.sah_cost, deep_large.stats.sah_cost);
+  EXPECT_LE(deep_large.tree.max_leaf_size, 1u);  // min_leaf, the Morton leaf size
+}
+
 TEST_F(Parameters, OnlyTheCostRatioMatters) {
   Built r1 = build("trav_cost=1,int_cost=1"), r2 = build("trav_cost=2,int_cost=2");
   EXPECT_EQ(r1.stats.node_count, r2.stats.node_count);

@@ -57,8 +57,11 @@ TEST(BackendSpace, NativePinsEveryTunedParameterToItsDefault) {
   // ... and pinned under tuned, where the BVH parameters are free again.
   EXPECT_EQ(space.parse("native_quality=high"), space.default_config());
   EXPECT_NE(space.parse("branching=8"), space.default_config());
-  // Morton still ignores the SAH parameters under tuned.
-  EXPECT_EQ(space.parse("quality=low,sah_block_size=8,max_leaf=4"), space.parse("quality=low"));
+  // Morton still ignores the SAH parameters under tuned, but not max_leaf (the leaf size of its
+  // balanced subtrees near max_depth).
+  EXPECT_EQ(space.parse("quality=low,sah_block_size=8,cost_ratio=4"), space.parse("quality=low"));
+  EXPECT_NE(space.parse("quality=low,max_leaf=4"), space.parse("quality=low"));
+  EXPECT_EQ(space.parse("backend=native,max_leaf=4"), space.parse("backend=native"));
 }
 
 TEST(BackendSpace, ChoicesRoundTrip) {

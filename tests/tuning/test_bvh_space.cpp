@@ -28,11 +28,20 @@ TEST(BvhSpace, MortonIgnoresSahParametersSoTheyCollapse) {
   BvhConfig a = testing::bvh_only_defaults(), b = a;
   a.quality = b.quality = BvhQuality::kLow;
   a.sah_block_size = 8;
-  a.max_leaf = 4;
   a.set_cost_ratio(10.0f);
   EXPECT_EQ(to_tuner_config(space, a), to_tuner_config(space, b));
   a.quality = b.quality = BvhQuality::kMedium;
   EXPECT_NE(to_tuner_config(space, a), to_tuner_config(space, b));
+}
+
+// max_leaf sizes the balanced subtrees Morton builds near max_depth: it stays a free parameter.
+TEST(BvhSpace, MortonKeepsMaxLeaf) {
+  tuner::Space space = make_bvh_space();
+  BvhConfig a = testing::bvh_only_defaults(), b = a;
+  a.quality = b.quality = BvhQuality::kLow;
+  a.max_leaf = 4;
+  EXPECT_NE(to_tuner_config(space, a), to_tuner_config(space, b));
+  EXPECT_EQ(to_bvh_config(to_tuner_config(space, a)).max_leaf, 4);
 }
 
 TEST(BvhSpace, EveryDecodedPointIsAValidBvhConfig) {
