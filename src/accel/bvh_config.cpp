@@ -83,7 +83,7 @@ std::string bvh_config_ranges() {
          "  branching=2|4|8 (default 2)\n"
          "  max_depth=8..64 (default 32)\n"
          "  sah_block_size=1|2|4|8|16 (default 1)\n"
-         "  min_leaf=1..8 (default 1)\n"
+         "  min_leaf=1..32 (default 1)\n"
          "  max_leaf=1..32 (default 32; min_leaf > max_leaf lowers min_leaf)\n"
          "  trav_cost=(0,20] (default 1)\n"
          "  int_cost=(0,20] (default 1)\n"
@@ -109,7 +109,7 @@ std::string BvhConfig::validate() {
   if (sah_block_size < 1 || sah_block_size > 16 || (sah_block_size & (sah_block_size - 1)) != 0)
     reject("parameter 'sah_block_size' = " + std::to_string(sah_block_size) +
            " is not one of 1, 2, 4, 8, 16");
-  check_range("min_leaf", min_leaf, 1, 8);
+  check_range("min_leaf", min_leaf, 1, 32);
   check_range("max_leaf", max_leaf, 1, 32);
   for (auto [key, cost] : {std::pair{"trav_cost", trav_cost}, std::pair{"int_cost", int_cost}}) {
     if (!(cost > 0.0f && cost <= kMaxCost))

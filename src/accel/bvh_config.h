@@ -16,7 +16,7 @@ struct BvhConfig {
   int branching = 2;       // 2, 4 or 8: children per node, also the SIMD width of the box test
   int max_depth = 32;      // 8..64
   int sah_block_size = 1;  // 1, 2, 4, 8, 16
-  int min_leaf = 1;        // 1..8 (Morton uses it as its leaf size)
+  int min_leaf = 1;        // 1..32 (Morton uses it as its leaf size)
   int max_leaf = 32;       // 1..32
   // Embree only uses the ratio trav_cost / int_cost; both are reported.
   float trav_cost = 1.0f;  // (0, 20]

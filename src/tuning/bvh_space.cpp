@@ -13,12 +13,15 @@ using Predicate = tuner::Space::Predicate;
 // in use; every BVH parameter is inactive otherwise. The BVH-only space keeps its exact
 // description (conditions are part of it), so databases tuned before the backend choice existed
 // stay valid.
-void add_bvh_params(tuner::Space& space, const Predicate& tuned) {
+// `min_leaf_max` is 8 in the BVH-only space (its databases' description) and 32 in the backend
+// space: Morton trees with leaves of 10 to 30 triangles are the fastest to build and render at
+// once under the `total` objective (docs/results.md, thirty-second session).
+void add_bvh_params(tuner::Space& space, const Predicate& tuned, int min_leaf_max) {
   space.add_enum("quality", {"low", "medium", "high"}, "medium")
       .add_int_set("branching", {2, 4, 8}, 2)
       .add_int("max_depth", 8, 64, 32)
       .add_int_set("sah_block_size", {1, 2, 4, 8, 16}, 1)
-      .add_int("min_leaf", 1, 8, 1)
+      .add_int("min_leaf", 1, min_leaf_max, 1)
       .add_int("max_leaf", 1, 32, 32)
       .add_real("cost_ratio", 1.0 / 20.0, 20.0, 1.0, tuner::Scale::kLog)
       .add_bool("static", false)
@@ -60,7 +63,7 @@ BvhQuality quality_of(const std::string& label) {
 
 tuner::Space make_bvh_space() {
   tuner::Space space;
-  add_bvh_params(space, {});
+  add_bvh_params(space, {}, 8);
   return space;
 }
 
@@ -70,7 +73,7 @@ tuner::Space make_backend_space() {
       .add_enum("native_quality", {"low", "medium", "high"}, "medium");
   space.add_condition("native_quality", tuner::Space::when_enum_not("backend", {"tuned"}));
   const Predicate tuned = tuner::Space::when_enum_not("backend", {"native"});
-  add_bvh_params(space, tuned);
+  add_bvh_params(space, tuned, 32);
   space.add_bool("collapse", true).add_condition("collapse", [tuned](const tuner::Config& c) {
     return tuned(c) && c.get_int("branching") < BvhConfig::kCollapsedWidth;
   });

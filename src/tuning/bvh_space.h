@@ -13,12 +13,12 @@
 namespace tuneray {
 
 // quality {low, medium, high}; branching {2, 4, 8}; max_depth 8..64; sah_block_size
-// {1, 2, 4, 8, 16}; min_leaf 1..8; max_leaf 1..32; cost_ratio = trav/int cost in [1/20, 20]
-// (log-scaled); static, compact, robust. Defaults are Embree's recommended ones.
-// Morton (quality=low) ignores the SAH block size and the cost ratio: they are inactive there, so
-// the search does not spend measurements on them. It uses min_leaf as its leaf size, and max_leaf
-// as the leaf size of the balanced subtrees it builds within 8 levels of max_depth, so both stay
-// active. Constraint: min_leaf <= max_leaf.
+// {1, 2, 4, 8, 16}; min_leaf 1..8 (1..32 in the backend space); max_leaf 1..32; cost_ratio =
+// trav/int cost in [1/20, 20] (log-scaled); static, compact, robust. Defaults are Embree's
+// recommended ones. Morton (quality=low) ignores the SAH block size and the cost ratio: they are
+// inactive there, so the search does not spend measurements on them. It uses min_leaf as its leaf
+// size, and max_leaf as the leaf size of the balanced subtrees it builds within 8 levels of
+// max_depth, so both stay active. Constraint: min_leaf <= max_leaf.
 tuner::Space make_bvh_space();
 
 // backend {tuned, native} (default tuned: the study's default configuration is Embree's

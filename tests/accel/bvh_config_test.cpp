@@ -75,7 +75,7 @@ TEST(BvhConfig, RejectsUnknownAndOutOfRange) {
   expect_rejected("sah_block_size=3", "sah_block_size");
   expect_rejected("sah_block_size=32", "sah_block_size");
   expect_rejected("min_leaf=0", "min_leaf");
-  expect_rejected("min_leaf=9", "min_leaf");
+  expect_rejected("min_leaf=33", "min_leaf");
   expect_rejected("max_leaf=33", "max_leaf");
   expect_rejected("int_cost=0", "int_cost");
   expect_rejected("trav_cost=-1", "trav_cost");

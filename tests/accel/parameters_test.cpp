@@ -83,9 +83,13 @@ TEST_F(Parameters, LeafReferencesCarryThePackCount) {
 TEST_F(Parameters, MinLeafMakesLeavesLarger) {
   Built m1 = build("min_leaf=1"), m8 = build("min_leaf=8");
   EXPECT_LT(m8.stats.leaf_count, m1.stats.leaf_count);
-  // Morton uses min_leaf as its leaf size.
+  // Morton uses min_leaf as its leaf size, up to max_leaf.
   Built low1 = build("quality=low,min_leaf=1"), low8 = build("quality=low,min_leaf=8");
   EXPECT_LT(low8.stats.leaf_count * 3, low1.stats.leaf_count);
+  Built low24 = build("quality=low,min_leaf=24");
+  EXPECT_LT(low24.stats.leaf_count * 2, low8.stats.leaf_count);
+  EXPECT_GT(low24.tree.max_leaf_size, 8u);
+  EXPECT_LE(low24.tree.max_leaf_size, 24u);
 }
 
 TEST_F(Parameters, MaxLeafBoundsLeafSize) {
