@@ -36,9 +36,10 @@ void expect_same_as_default(const std::string& params) {
   EXPECT_LE(a.shadow_mismatch, a.rays / 5000);
   EXPECT_EQ(a.dist_mismatch, 0u);
   // The batch entry points go through Embree's stream intersectors, which the quantized BVHs
-  // lack; they must exist and agree with the single-ray calls.
+  // lack; they must exist and agree with the single-ray calls (to rounding: Embree's stream and
+  // single-ray triangle tests need not round alike on every CPU).
   for (RayCoherence coherence : {RayCoherence::kCoherent, RayCoherence::kIncoherent})
-    expect_batch_hits_are_single_ray_hits(*accel, rays.closest, coherence);
+    expect_batch_hits_match_single_ray_hits(*accel, rays.closest, coherence);
 }
 
 TEST(NativeDeviceChoices, EveryAcceptedTriangleBvhFindsWhatTheDefaultFinds) {
