@@ -23,7 +23,8 @@ CommandAction add_bench_command(CLI::App& app) {
   r->add_option("--spp", render->spp, "Samples per pixel per repeat")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
-  r->add_option("--repeats", render->repeats, "Repeats (the median is reported)")
+  r->add_option("--repeats", render->repeats,
+                "Repeats (medians reported; interleaved with the pathtracer's frames)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   r->add_option("--max-bounces", render->max_bounces, "Path length")

@@ -1,7 +1,9 @@
 // tuneray bench render: bench/render_bench.h's speeds per scene and the Embree comparison as a
 // table, and as JSON when asked.
 #include <fmt/core.h>
+#include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -11,6 +13,7 @@
 #include "bench/scene_paths.h"
 #include "image/atomic_file.h"
 #include "scene/load.h"
+#include "tuning/stats.h"
 
 namespace tuneray {
 
@@ -18,11 +21,17 @@ namespace {
 
 void print_embree(const EmbreeComparison& c) {
   fmt::print("  {:<12} {:>10} {:>12}\n", "", "frame ms", "Mrays/s*");
-  fmt::print("  {:<12} {:>10.1f} {:>12.2f}  {}\n", "tuneray", c.our_frame_ms, c.our_mrays,
+  fmt::print("  {:<12} {:>10.1f} {:>12.2f}  {}\n", "tuneray", median(c.our_frame_ms), c.our_mrays,
              c.our_accel);
-  fmt::print("  {:<12} {:>10.1f} {:>12.2f}\n", "embree", c.embree_frame_ms, c.embree_mrays);
-  fmt::print("  speed ratio tuneray/embree (frame time) = {:.2f}\n", c.speed_ratio());
-  fmt::print("  * each program counts rays its own way; compare frame times.\n");
+  fmt::print("  {:<12} {:>10.1f} {:>12.2f}\n", "embree", median(c.embree_frame_ms), c.embree_mrays);
+  const std::vector<double> ratios = c.speed_ratios();
+  fmt::print(
+      "  speed ratio tuneray/embree (frame time) = {:.2f}, median of {} interleaved repeats "
+      "(range {:.2f}-{:.2f}; each: {:.2f})\n",
+      c.speed_ratio(), ratios.size(), *std::min_element(ratios.begin(), ratios.end()),
+      *std::max_element(ratios.begin(), ratios.end()), fmt::join(ratios, " "));
+  fmt::print(
+      "  frame ms are medians; * each program counts rays its own way: compare frame times.\n");
 }
 
 }  // namespace
@@ -64,8 +73,11 @@ int run_bench_render(const RenderBenchOptions& a) {
       print_embree(c);
       json["embree_reference"] = {{"spp", c.spp},
                                   {"tuneray_accel", c.our_accel},
-                                  {"tuneray_frame_ms", c.our_frame_ms},
-                                  {"embree_frame_ms", c.embree_frame_ms},
+                                  {"tuneray_frame_ms", median(c.our_frame_ms)},
+                                  {"embree_frame_ms", median(c.embree_frame_ms)},
+                                  {"tuneray_frame_ms_per_repeat", c.our_frame_ms},
+                                  {"embree_frame_ms_per_repeat", c.embree_frame_ms},
+                                  {"speed_ratio_per_repeat", c.speed_ratios()},
                                   {"tuneray_mrays", c.our_mrays},
                                   {"embree_mrays", c.embree_mrays},
                                   {"speed_ratio", c.speed_ratio()}};

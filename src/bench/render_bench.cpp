@@ -1,13 +1,11 @@
 #include "bench/render_bench.h"
 
-#include <memory>
+#include <algorithm>
 #include <stdexcept>
 
 #include "accel/factory.h"
 #include "bench/embree_peer.h"
 #include "bench/scene_paths.h"
-#include "render/film.h"
-#include "render/tile_renderer.h"
 #include "scene/load.h"
 #include "tuning/stats.h"
 
@@ -21,33 +19,59 @@ std::vector<std::string> render_bench_scenes(const RenderBenchOptions& options) 
   return scenes;
 }
 
-RenderSpeed measure_render_speed(const std::string& name, const Scene& scene,
-                                 const RenderBenchOptions& a, int spp) {
-  std::unique_ptr<Accel> accel = make_accel(a.accel, a.bvh);
-  BuildStats build = accel->build({scene.positions.data(), scene.positions.size(),
-                                   scene.triangles.data(), scene.triangles.size()});
+TimedRenderer::TimedRenderer(const Scene& scene, const RenderBenchOptions& a)
+    : accel_(make_accel(a.accel, a.bvh)),
+      build_(accel_->build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+                            scene.triangles.size()})),
+      sampler_(1),
+      film_(a.width, a.height) {
   RenderSettings settings;
   settings.width = a.width;
   settings.height = a.height;
   settings.max_bounces = a.max_bounces;
-  PcgSampler sampler(1);
-  TileRenderer renderer(scene, *accel, scene.cameras.at(0), settings, sampler);
-  Film film(a.width, a.height);
-  renderer.render_pass(film, 0, 1);  // warm-up: caches, page faults, TBB threads
+  renderer_ =
+      std::make_unique<TileRenderer>(scene, *accel_, scene.cameras.at(0), settings, sampler_);
+  pass(1);  // warm-up: caches, page faults, TBB threads
+}
+
+PassStats TimedRenderer::pass(int spp) {
+  PassStats p = renderer_->render_pass(film_, next_sample_, spp);
+  next_sample_ += static_cast<uint32_t>(spp);
+  return p;
+}
+
+std::string TimedRenderer::accel_description() const {
+  return accel_->name() + " " + accel_->describe();
+}
+
+RenderSpeed measure_render_speed(const std::string& name, const Scene& scene,
+                                 const RenderBenchOptions& a, int spp) {
+  TimedRenderer renderer(scene, a);
   std::vector<double> ms, mrays;
   for (int r = 0; r < a.repeats; ++r) {
-    PassStats p = renderer.render_pass(film, 1 + r * spp, spp);
+    PassStats p = renderer.pass(spp);
     ms.push_back(p.render_ms / spp);
     mrays.push_back(p.mrays_per_s());
   }
   RenderSpeed r;
   r.scene = name;
-  r.accel = accel->name() + " " + accel->describe();
+  r.accel = renderer.accel_description();
   r.triangles = scene.triangles.size();
-  r.build_ms = build.build_ms;
+  r.build_ms = renderer.build_ms();
   r.ms_per_spp = median(ms);
   r.mrays = median(mrays);
   return r;
+}
+
+std::vector<double> EmbreeComparison::speed_ratios() const {
+  std::vector<double> ratios;
+  for (size_t r = 0; r < std::min(our_frame_ms.size(), embree_frame_ms.size()); ++r)
+    ratios.push_back(embree_frame_ms[r] / our_frame_ms[r]);
+  return ratios;
+}
+
+double EmbreeComparison::speed_ratio() const {
+  return median(speed_ratios());
 }
 
 EmbreeComparison compare_with_embree(const RenderBenchOptions& a) {
@@ -58,20 +82,27 @@ EmbreeComparison compare_with_embree(const RenderBenchOptions& a) {
   peer.max_path_length = a.max_bounces;
   c.error = embree_peer_missing(peer);
   if (!c.error.empty()) return c;
-  EmbreePeerTiming embree;
-  try {
-    embree = embree_peer_benchmark(peer, c.spp, a.repeats);
-  } catch (const std::runtime_error& e) {
-    c.error = e.what();
-    return c;
+  const Scene scene = embree_cornell_scene(peer);
+  TimedRenderer ours(scene, a);
+  std::vector<double> our_mrays, embree_mrays;
+  for (int r = 0; r < a.repeats; ++r) {
+    EmbreePeerTiming embree;
+    try {
+      embree = embree_peer_benchmark(peer, c.spp, 1);
+    } catch (const std::runtime_error& e) {
+      c.error = e.what();
+      return c;
+    }
+    c.embree_frame_ms.push_back(embree.frame_ms);
+    embree_mrays.push_back(embree.mrays);
+    PassStats p = ours.pass(c.spp);
+    c.our_frame_ms.push_back(p.render_ms);
+    our_mrays.push_back(p.mrays_per_s());
   }
-  RenderSpeed ours = measure_render_speed("embree-cornell", embree_cornell_scene(peer), a, c.spp);
   c.ok = true;
-  c.our_accel = ours.accel;
-  c.our_frame_ms = ours.ms_per_spp * c.spp;
-  c.embree_frame_ms = embree.frame_ms;
-  c.our_mrays = ours.mrays;
-  c.embree_mrays = embree.mrays;
+  c.our_accel = ours.accel_description();
+  c.our_mrays = median(our_mrays);
+  c.embree_mrays = median(embree_mrays);
   return c;
 }
 

@@ -5,6 +5,12 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "accel/accel.h"
+#include "render/film.h"
+#include "render/sampler.h"
+#include "render/tile_renderer.h"
 #include "scene/scene.h"
 
 namespace tuneray {
@@ -36,22 +42,46 @@ struct RenderSpeed {
   double mrays = 0;       // closest-hit + shadow rays per second, median over repeats
 };
 
-// The options' backend, PCG samples, the default (wavefront) scheduler: one warm-up pass, then
-// `repeats` passes of `spp` samples. Throws std::invalid_argument on an unknown backend or
-// parameter.
+// One scene ready to render with the options' backend, PCG samples and the default (wavefront)
+// scheduler: built and warmed up (caches, page faults, TBB threads) on construction, then timed
+// one pass at a time, so that a caller can interleave its passes with another program's frames.
+// Throws std::invalid_argument on an unknown backend or parameter.
+class TimedRenderer {
+ public:
+  TimedRenderer(const Scene& scene, const RenderBenchOptions& options);
+  // The next `spp` samples per pixel (sample indices continue from the last pass).
+  PassStats pass(int spp);
+  std::string accel_description() const;  // the backend's name and configuration
+  double build_ms() const { return build_.build_ms; }
+
+ private:
+  std::unique_ptr<Accel> accel_;
+  BuildStats build_;
+  PcgSampler sampler_;
+  std::unique_ptr<TileRenderer> renderer_;
+  Film film_;
+  uint32_t next_sample_ = 0;
+};
+
+// A TimedRenderer's `repeats` passes of `spp` samples, medians.
 RenderSpeed measure_render_speed(const std::string& name, const Scene& scene,
                                  const RenderBenchOptions& options, int spp);
 
 // Our renderer and Embree's pathtracer on Embree's Cornell box, same camera, light, size, spp
-// and path length; `ok` false (with `error`) when the pathtracer or its scene is missing.
+// and path length, interleaved: each repeat times one pathtracer frame (after its own warm-up
+// frame), then one pass of ours, so that both see the machine in the same state and a drifting
+// host moves both sides of each repeat's ratio. `ok` false (with `error`) when the pathtracer or
+// its scene is missing.
 struct EmbreeComparison {
   bool ok = false;
   std::string error;
   int spp = 16;
-  std::string our_accel;  // RenderSpeed::accel of our run
-  double our_frame_ms = 0, embree_frame_ms = 0;
-  double our_mrays = 0, embree_mrays = 0;  // each program counts rays its own way
-  double speed_ratio() const { return embree_frame_ms / our_frame_ms; }
+  std::string our_accel;                              // TimedRenderer::accel_description()
+  std::vector<double> our_frame_ms, embree_frame_ms;  // per repeat, in the order run
+  double our_mrays = 0, embree_mrays = 0;  // medians; each program counts rays its own way
+  // embree_frame_ms[r] / our_frame_ms[r]: above 1, we are faster.
+  std::vector<double> speed_ratios() const;
+  double speed_ratio() const;  // median of speed_ratios()
 };
 EmbreeComparison compare_with_embree(const RenderBenchOptions& options);
 
