@@ -2,10 +2,9 @@
 // run Embree's own tutorial path tracer on its Cornell box (the reference most people know).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
-
-#include <memory>
 
 #include "accel/accel.h"
 #include "render/film.h"
