@@ -7,6 +7,7 @@
 #include "bench/embree_peer.h"
 #include "bench/scene_paths.h"
 #include "scene/load.h"
+#include "tuning/interleaved_ratios.h"
 #include "tuning/stats.h"
 
 namespace tuneray {
@@ -71,7 +72,11 @@ std::vector<double> EmbreeComparison::speed_ratios() const {
 }
 
 double EmbreeComparison::speed_ratio() const {
-  return median(speed_ratios());
+  // The estimator eval's and tune's comparisons use (of the logarithms, so an even count's
+  // median inverts exactly with the pair).
+  InterleavedResult rounds;
+  rounds.costs = {embree_frame_ms, our_frame_ms};
+  return paired_ratio(rounds, 0, 1, RatioEstimator::kMedian).ratio;
 }
 
 EmbreeComparison compare_with_embree(const RenderBenchOptions& a) {

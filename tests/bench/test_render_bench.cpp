@@ -62,7 +62,7 @@ TEST(RenderBench, TheEmbreeRatioIsTheMedianOfPerRepeatRatios) {
   c.our_frame_ms = {50, 100, 100, 90};
   EXPECT_EQ(c.speed_ratios(), (std::vector<double>{2, 2, 3, 1}));
   EXPECT_DOUBLE_EQ(c.speed_ratio(), 2.0);
-  // A ratio of medians would be 145 / 95 = 1.53: a slow phase of the host that hit one side of
+  // A ratio of medians would be 150 / 95 = 1.58: a slow phase of the host that hit one side of
   // one repeat would move it, the median of paired ratios not.
 }
 
