@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "accel/ray_planes.h"
 #include "math/ray.h"
 #include "math/vec.h"
 
@@ -68,6 +69,9 @@ class Accel {
   virtual void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
                                RayCoherence coherence = RayCoherence::kIncoherent) const;
   virtual void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> occluded) const;
+  // intersect_batch on rays given as planes. The default copies them into Ray records first.
+  virtual void intersect_planes(const RayPlanes& rays, std::span<Hit> hits,
+                                RayCoherence coherence = RayCoherence::kIncoherent) const;
 };
 
 }  // namespace tuneray

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
+#include "math/transpose8.h"
 #include "scene/scene.h"
 
 namespace tuneray {
@@ -52,6 +54,57 @@ inline bool from_rtc_hit(const RTCRayHit& rh, Hit& hit) {
   hit.v = rh.hit.v;
   return true;
 }
+// Eight hit records (t, prim, u, v) from Embree's hit planes, a miss as Hit{}: a 4x8 transpose.
+// The planes hold eight readable lanes; hits [0, count) are written.
+void store_hits8(const float* tfar, const unsigned* prim_id, const float* u_plane,
+                 const float* v_plane, const unsigned* geom_id, size_t count, Hit* hits) {
+  const __m256i invalid = _mm256_set1_epi32(static_cast<int>(RTC_INVALID_GEOMETRY_ID));
+  const __m256 miss = _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(geom_id)), invalid));
+  const __m256 t = _mm256_blendv_ps(_mm256_loadu_ps(tfar), _mm256_set1_ps(kInf), miss);
+  const __m256 prim = _mm256_or_ps(_mm256_loadu_ps(reinterpret_cast<const float*>(prim_id)), miss);
+  const __m256 u = _mm256_andnot_ps(miss, _mm256_loadu_ps(u_plane));
+  const __m256 v = _mm256_andnot_ps(miss, _mm256_loadu_ps(v_plane));
+  const __m256 tp_lo = _mm256_unpacklo_ps(t, prim), tp_hi = _mm256_unpackhi_ps(t, prim);
+  const __m256 uv_lo = _mm256_unpacklo_ps(u, v), uv_hi = _mm256_unpackhi_ps(u, v);
+  const __m256 h04 = _mm256_shuffle_ps(tp_lo, uv_lo, 0x44),
+               h15 = _mm256_shuffle_ps(tp_lo, uv_lo, 0xEE);
+  const __m256 h26 = _mm256_shuffle_ps(tp_hi, uv_hi, 0x44),
+               h37 = _mm256_shuffle_ps(tp_hi, uv_hi, 0xEE);
+  static_assert(sizeof(Hit) == 4 * sizeof(float) && offsetof(Hit, prim) == 4 &&
+                offsetof(Hit, u) == 8 && offsetof(Hit, v) == 12);
+  alignas(32) Hit staged[8];
+  float* o = reinterpret_cast<float*>(count == 8 ? hits : staged);
+  _mm256_storeu_ps(o, _mm256_permute2f128_ps(h04, h15, 0x20));
+  _mm256_storeu_ps(o + 8, _mm256_permute2f128_ps(h26, h37, 0x20));
+  _mm256_storeu_ps(o + 16, _mm256_permute2f128_ps(h04, h15, 0x31));
+  _mm256_storeu_ps(o + 24, _mm256_permute2f128_ps(h26, h37, 0x31));
+  if (count < 8) std::copy_n(staged, count, hits);
+}
+
+// The planes of a coherent stream that the wavefront does not keep: the constant inputs, and
+// the outputs Embree writes. Per thread, kept between calls; every plane has whole groups of 8.
+struct StreamPlanes {
+  std::vector<float> zero, tfar, ng_x, ng_y, ng_z, u, v;
+  std::vector<unsigned> all_bits, zero_bits, prim, geom, inst;
+  void prepare(size_t n) {
+    const size_t padded = (n + 7) / 8 * 8;
+    if (zero.size() < padded) {
+      zero.assign(padded, 0.0f);
+      all_bits.assign(padded, ~0u);
+      zero_bits.assign(padded, 0u);
+      for (auto* plane : {&tfar, &ng_x, &ng_y, &ng_z, &u, &v}) plane->resize(padded);
+      for (auto* plane : {&prim, &geom, &inst}) plane->resize(padded);
+    }
+    std::fill_n(tfar.begin(), n, kInf);
+    std::fill_n(geom.begin(), padded, RTC_INVALID_GEOMETRY_ID);  // also the unused lanes
+  }
+};
+
+bool aligned16(const float* p) {
+  return (reinterpret_cast<uintptr_t>(p) & 15) == 0;
+}
+
 }  // namespace
 
 // Embree 3.13 also names quantized BVHs (qbvh4.triangle4i, qbvh8.triangle4, qbvh8.triangle4i),
@@ -190,8 +243,122 @@ bool EmbreeNativeAccel::occluded(const Ray& ray) const {
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+// Incoherent closest-hit batches go to Embree as 8-ray packets in its SoA layout. rtcIntersect1M
+// traces such a batch with the same packet kernel, but gathers every packet from the records
+// and scatters the hits back first (batch_replay, bounce rays, rtcIntersect8 over
+// rtcIntersect1M: Embree's Cornell box 1.08-1.11x, conference 1.03-1.04x). Shadow rays keep
+// rtcOccluded1M, which sorts them by octant into streams: as packets they were 0.72-0.82x on
+// conference and lost-empire.
+template <class LoadPacket>
+void EmbreeNativeAccel::intersect_packets(size_t n, LoadPacket load, std::span<Hit> hits) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  alignas(32) RTCRayHit8 packet;
+  alignas(32) int valid[8];
+  _mm256_store_ps(packet.ray.time, _mm256_setzero_ps());
+  _mm256_store_si256(reinterpret_cast<__m256i*>(packet.ray.mask), _mm256_set1_epi32(-1));
+  _mm256_store_si256(reinterpret_cast<__m256i*>(packet.ray.id), _mm256_setzero_si256());
+  _mm256_store_si256(reinterpret_cast<__m256i*>(packet.ray.flags), _mm256_setzero_si256());
+  const __m256i invalid = _mm256_set1_epi32(static_cast<int>(RTC_INVALID_GEOMETRY_ID));
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (size_t i = 0; i < n; i += 8) {
+    const size_t count = std::min<size_t>(8, n - i);
+    load(i, count, packet);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(packet.hit.geomID), invalid);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(packet.hit.instID[0]), invalid);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(valid),
+                       _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(count)), lane));
+    rtcIntersect8(valid, scene_, &context, &packet);
+    store_hits8(packet.ray.tfar, packet.hit.primID, packet.hit.u, packet.hit.v, packet.hit.geomID,
+                count, hits.data() + i);
+  }
+}
+
+// Coherent batches through Embree's stream traversal, as rtcIntersect1M's coherent mode does,
+// but from the planes as they are (rtcIntersectNp): no copy into records, no gather of every
+// packet from records inside Embree, no scatter of the hits back.
+void EmbreeNativeAccel::intersect_stream(const RayPlanes& rays, std::span<Hit> hits) const {
+  for (const float* p :
+       {rays.org[0], rays.org[1], rays.org[2], rays.dir[0], rays.dir[1], rays.dir[2]})
+    if (!aligned16(p)) {  // rtcIntersectNp's requirement
+      Accel::intersect_planes(rays, hits, RayCoherence::kCoherent);
+      return;
+    }
+  thread_local StreamPlanes planes;
+  planes.prepare(rays.size);
+  RTCRayHitNp stream;
+  // Embree only reads the rays' planes (the stream filter copies each packet before tracing).
+  stream.ray.org_x = const_cast<float*>(rays.org[0]);
+  stream.ray.org_y = const_cast<float*>(rays.org[1]);
+  stream.ray.org_z = const_cast<float*>(rays.org[2]);
+  stream.ray.dir_x = const_cast<float*>(rays.dir[0]);
+  stream.ray.dir_y = const_cast<float*>(rays.dir[1]);
+  stream.ray.dir_z = const_cast<float*>(rays.dir[2]);
+  stream.ray.tnear = planes.zero.data();
+  stream.ray.time = planes.zero.data();
+  stream.ray.tfar = planes.tfar.data();
+  stream.ray.mask = planes.all_bits.data();
+  stream.ray.id = planes.zero_bits.data();
+  stream.ray.flags = planes.zero_bits.data();
+  stream.hit.Ng_x = planes.ng_x.data();
+  stream.hit.Ng_y = planes.ng_y.data();
+  stream.hit.Ng_z = planes.ng_z.data();
+  stream.hit.u = planes.u.data();
+  stream.hit.v = planes.v.data();
+  stream.hit.primID = planes.prim.data();
+  stream.hit.geomID = planes.geom.data();
+  for (auto*& inst : stream.hit.instID) inst = planes.inst.data();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersectNp(scene_, &context, &stream, static_cast<unsigned>(rays.size));
+  for (size_t i = 0; i < rays.size; i += 8)
+    store_hits8(planes.tfar.data() + i, planes.prim.data() + i, planes.u.data() + i,
+                planes.v.data() + i, planes.geom.data() + i, std::min<size_t>(8, rays.size - i),
+                hits.data() + i);
+}
+
+void EmbreeNativeAccel::intersect_planes(const RayPlanes& rays, std::span<Hit> hits,
+                                         RayCoherence coherence) const {
+  if (coherence == RayCoherence::kCoherent) {
+    intersect_stream(rays, hits);
+    return;
+  }
+  const auto load = [&rays](size_t i, size_t count, RTCRayHit8& packet) {
+    // The last group reads only its rays: the planes may end there.
+    const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(count)),
+                                            _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    float* const dst[6] = {packet.ray.org_x, packet.ray.org_y, packet.ray.org_z,
+                           packet.ray.dir_x, packet.ray.dir_y, packet.ray.dir_z};
+    const float* const src[6] = {rays.org[0], rays.org[1], rays.org[2],
+                                 rays.dir[0], rays.dir[1], rays.dir[2]};
+    for (int k = 0; k < 6; ++k)
+      _mm256_store_ps(
+          dst[k], count == 8 ? _mm256_loadu_ps(src[k] + i) : _mm256_maskload_ps(src[k] + i, mask));
+    _mm256_store_ps(packet.ray.tnear, _mm256_setzero_ps());
+    _mm256_store_ps(packet.ray.tfar, _mm256_set1_ps(kInf));
+  };
+  intersect_packets(rays.size, load, hits);
+}
+
 void EmbreeNativeAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
                                         RayCoherence coherence) const {
+  if (coherence == RayCoherence::kIncoherent) {
+    const auto load = [rays](size_t i, size_t count, RTCRayHit8& packet) {
+      static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, tfar) == 28);
+      __m256 r[8];
+      const float* src = reinterpret_cast<const float*>(rays.data() + i);
+      for (size_t k = 0; k < 8; ++k)
+        r[k] = k < count ? _mm256_loadu_ps(src + 8 * k) : _mm256_setzero_ps();
+      transpose8(r);  // planes: org x, y, z, tnear, dir x, y, z, tfar
+      float* const dst[8] = {packet.ray.org_x, packet.ray.org_y, packet.ray.org_z, packet.ray.tnear,
+                             packet.ray.dir_x, packet.ray.dir_y, packet.ray.dir_z, packet.ray.tfar};
+      for (int k = 0; k < 8; ++k) _mm256_store_ps(dst[k], r[k]);
+    };
+    intersect_packets(rays.size(), load, hits);
+    return;
+  }
   thread_local std::vector<RTCRayHit> buffer;
   buffer.resize(rays.size());
   for (size_t i = 0; i < rays.size(); ++i) store_rtc_hit(rays[i], buffer[i]);
@@ -199,8 +366,7 @@ void EmbreeNativeAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit
   rtcInitIntersectContext(&context);
   // Coherent streams go through Embree's packet traversal: a frame of camera rays alone renders
   // 1.25x faster; on scattered rays the flag makes a frame 1.5x slower (Cornell box, 320x240).
-  context.flags = coherence == RayCoherence::kCoherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
-                                                       : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   rtcIntersect1M(scene_, &context, buffer.data(), static_cast<unsigned>(rays.size()),
                  sizeof(RTCRayHit));
   for (size_t i = 0; i < rays.size(); ++i) {

@@ -55,9 +55,16 @@ class EmbreeNativeAccel final : public Accel {
   void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
                        RayCoherence coherence = RayCoherence::kIncoherent) const override;
   void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> occluded) const override;
+  void intersect_planes(const RayPlanes& rays, std::span<Hit> hits,
+                        RayCoherence coherence = RayCoherence::kIncoherent) const override;
 
  private:
   void release();
+  // Closest hits of n rays as rtcIntersect8 packets; load(i, count, packet) writes the origins,
+  // directions, tnear and tfar of rays [i, i + count) into the packet's lanes [0, count).
+  template <class LoadPacket>
+  void intersect_packets(size_t n, LoadPacket load, std::span<Hit> hits) const;
+  void intersect_stream(const RayPlanes& rays, std::span<Hit> hits) const;
   NativeOptions options_;
   std::shared_ptr<EmbreeDevice> device_;
   // The device the scene was built on: device_, or one of options_.device_config().

@@ -121,6 +121,19 @@ void TunedBvhAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hi
   }
 }
 
+void TunedBvhAccel::intersect_planes(const RayPlanes& rays, std::span<Hit> hits,
+                                     RayCoherence coherence) const {
+  if (coherence == RayCoherence::kCoherent && coherent_batch_) {
+    Accel::intersect_planes(rays, hits, coherence);  // the packet kernels read records
+    return;
+  }
+  // One ray at a time, each read from the planes: no pass that copies the batch into records.
+  for (size_t i = 0; i < rays.size; ++i) {
+    hits[i] = Hit{};
+    intersect(rays.ray(i), hits[i]);
+  }
+}
+
 void TunedBvhAccel::occluded_batch(std::span<const Ray> rays,
                                    std::span<uint8_t> occluded_out) const {
   if (occluded_batch_) {

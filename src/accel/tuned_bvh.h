@@ -50,6 +50,8 @@ class TunedBvhAccel final : public Accel {
   void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
                        RayCoherence coherence = RayCoherence::kIncoherent) const override;
   void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> occluded) const override;
+  void intersect_planes(const RayPlanes& rays, std::span<Hit> hits,
+                        RayCoherence coherence = RayCoherence::kIncoherent) const override;
 
  private:
   BvhConfig config_;

@@ -2,8 +2,6 @@
 
 #include <bit>
 
-#include "math/transpose8.h"
-
 namespace tuneray {
 
 namespace {
@@ -24,22 +22,6 @@ struct LeftPack {
 const LeftPack kLeftPack;
 
 }  // namespace
-
-void PathWave::rays(std::span<Ray> out) const {
-  static_assert(sizeof(Ray) == 8 * sizeof(float));
-  const float* o[3] = {plane(kOrgX), plane(kOrgY), plane(kOrgZ)};
-  const float* d[3] = {plane(kDirX), plane(kDirY), plane(kDirZ)};
-  size_t i = 0;
-  for (; i + 8 <= size; i += 8) {
-    __m256 r[8] = {_mm256_loadu_ps(o[0] + i), _mm256_loadu_ps(o[1] + i), _mm256_loadu_ps(o[2] + i),
-                   _mm256_setzero_ps(),       _mm256_loadu_ps(d[0] + i), _mm256_loadu_ps(d[1] + i),
-                   _mm256_loadu_ps(d[2] + i), _mm256_set1_ps(kInf)};
-    transpose8(r);
-    float* dst = reinterpret_cast<float*>(out.data() + i);
-    for (int k = 0; k < 8; ++k) _mm256_storeu_ps(dst + 8 * k, r[k]);
-  }
-  for (; i < size; ++i) out[i] = ray(i);
-}
 
 void PathWave::compact(std::span<const uint8_t> alive) {
   size_t kept = 0;

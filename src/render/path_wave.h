@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "accel/ray_planes.h"
 #include "math/ray.h"
 #include "math/vec.h"
 #include "render/simd8.h"
@@ -104,12 +105,7 @@ struct PathWave {
     index.store(reinterpret_cast<int32_t*>(slot.data() + begin));
   }
 
-  Ray ray(size_t i) const {
-    Ray r;
-    r.org = {plane(kOrgX)[i], plane(kOrgY)[i], plane(kOrgZ)[i]};
-    r.dir = {plane(kDirX)[i], plane(kDirY)[i], plane(kDirZ)[i]};
-    return r;
-  }
+  Ray ray(size_t i) const { return ray_planes().ray(i); }
   Color radiance(size_t i) const { return {plane(kLX)[i], plane(kLY)[i], plane(kLZ)[i]}; }
   Color camera_radiance(size_t i) const {
     return {plane(kCameraX)[i], plane(kCameraY)[i], plane(kCameraZ)[i]};
@@ -120,8 +116,12 @@ struct PathWave {
     plane(kLZ)[i] += c.z;
   }
 
-  // The rays of paths [0, size) as Ray records (the accelerator's batch form).
-  void rays(std::span<Ray> out) const;
+  // The rays of paths [0, size), as the accelerator's batch calls take them.
+  RayPlanes ray_planes() const {
+    return {{plane(kOrgX), plane(kOrgY), plane(kOrgZ)},
+            {plane(kDirX), plane(kDirY), plane(kDirZ)},
+            size};
+  }
 
   // Keeps the paths whose bit is set in alive[i / 8] (bit i % 8), in order, at [0, count).
   void compact(std::span<const uint8_t> alive);

@@ -71,7 +71,7 @@ struct TileRenderer::WaveBuffers {
   PathWave wave;
   std::array<std::vector<float>, kShadeSamples> u;  // planes over wave positions
   std::vector<uint32_t> sampled, sampled_at;        // slots drawing numbers, their positions
-  std::vector<Ray> rays, shadow_rays;
+  std::vector<Ray> shadow_rays;
   std::vector<Hit> hits;
   std::vector<uint32_t> shadow_owner;  // wave position
   std::vector<Color> shadow_contribution;
@@ -202,9 +202,7 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
     b.hits.resize(n);
     uint64_t t0 = profile ? now_ns() : 0;
     if (batched) {
-      b.rays.resize(n);
-      wave.rays(b.rays);
-      accel.intersect_batch(b.rays, b.hits, coherence);
+      accel.intersect_planes(wave.ray_planes(), b.hits, coherence);
     } else {
       for (size_t i = 0; i < n; ++i) {
         b.hits[i] = Hit{};

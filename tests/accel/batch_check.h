@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -74,6 +75,41 @@ inline size_t expect_batch_hits_match_single_ray_hits(const Accel& accel,
                                                       const std::vector<Ray>& rays,
                                                       RayCoherence coherence) {
   return expect_batch_hits_within(accel, rays, coherence, 1e-5f, 1e-4f);
+}
+
+// The rays (each spanning [0, inf)) as planes in arrays of exactly their count, so that a
+// backend reading past the last ray reads outside them.
+struct PlaneCopies {
+  std::array<std::vector<float>, 6> component;
+  RayPlanes planes;
+  explicit PlaneCopies(const std::vector<Ray>& rays) {
+    for (const Ray& r : rays)
+      for (int k = 0; k < 3; ++k) {
+        component[k].push_back(r.org[k]);
+        component[3 + k].push_back(r.dir[k]);
+      }
+    for (int k = 0; k < 3; ++k) {
+      planes.org[k] = component[k].data();
+      planes.dir[k] = component[3 + k].data();
+    }
+    planes.size = rays.size();
+  }
+};
+
+// intersect_planes must find bit for bit what intersect_batch finds on the same rays.
+inline void expect_plane_hits_are_batch_hits(const Accel& accel, const std::vector<Ray>& rays,
+                                             RayCoherence coherence) {
+  const PlaneCopies copies(rays);
+  std::vector<Hit> from_planes(rays.size()), from_records(rays.size());
+  accel.intersect_planes(copies.planes, from_planes, coherence);
+  accel.intersect_batch(rays, from_records, coherence);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    SCOPED_TRACE("ray " + std::to_string(i));
+    EXPECT_EQ(from_records[i].prim, from_planes[i].prim);
+    EXPECT_EQ(from_records[i].t, from_planes[i].t);
+    EXPECT_EQ(from_records[i].u, from_planes[i].u);
+    EXPECT_EQ(from_records[i].v, from_planes[i].v);
+  }
 }
 
 // Every ray of the batch must be blocked exactly when the single-ray call says so. Returns how

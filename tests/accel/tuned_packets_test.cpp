@@ -84,6 +84,20 @@ TEST_P(TunedPackets, CoherentBatchesFindTheSingleRayHitsBitForBit) {
   expect_streams_match_single_rays(mesh, rays, kBatchKernelConfigs);
 }
 
+// The wavefront hands its rays over as planes: the tuned backend's hits from them are those of
+// its batch calls on records, for every batch kernel and both coherences.
+TEST_P(TunedPackets, PlanesFindTheRecordsHits) {
+  const Mesh mesh = make_soup(4000, 11, 0.08f);
+  const std::vector<Ray> rays = camera_rays(Vec3f(0.5f, 0.45f, -1.5f), Vec3f(0, 0, 1), 29, 23);
+  for (const char* text : kBatchKernelConfigs) {
+    SCOPED_TRACE(text);
+    TunedBvhAccel tuned(parse_bvh_config(text));
+    tuned.build(mesh.view());
+    for (RayCoherence coherence : {RayCoherence::kCoherent, RayCoherence::kIncoherent})
+      expect_plane_hits_are_batch_hits(tuned, rays, coherence);
+  }
+}
+
 // Coherent batches are cut into runs of consecutive rays of one octant: runs of every length
 // (single rays below 4, partial packets, full streams and runs longer than a stream) and octant
 // changes at every position must leave each ray its single-ray hit.
