@@ -36,6 +36,27 @@ struct LaneVecs {
   }
   V8 get() const { return {x.get(), y.get(), z.get()}; }
 };
+// Eight rows of three floats (x, y, z), one per lane, read as planes: each row by one masked
+// 128-bit load, then a transpose. Writing the floats lane by lane and reading them as a vector
+// stalls on store forwarding. Lanes never set read a row of zeros.
+struct LaneRows {
+  alignas(16) static constexpr float kZeroRow[4] = {};
+  const float* at[kLanes] = {kZeroRow, kZeroRow, kZeroRow, kZeroRow,
+                             kZeroRow, kZeroRow, kZeroRow, kZeroRow};
+  void set(int i, const Vec3f& row) { at[i] = &row.x; }
+  V8 get() const {
+    static_assert(sizeof(Vec3f) == 3 * sizeof(float));
+    const __m128i xyz = _mm_setr_epi32(-1, -1, -1, 0);  // the fourth float may lie past an array
+    const auto pair = [&](int lo) {
+      return _mm256_set_m128(_mm_maskload_ps(at[lo + 4], xyz), _mm_maskload_ps(at[lo], xyz));
+    };
+    const __m256 r0 = pair(0), r1 = pair(1), r2 = pair(2), r3 = pair(3);
+    const __m256 xy01 = _mm256_unpacklo_ps(r0, r1), z01 = _mm256_unpackhi_ps(r0, r1);
+    const __m256 xy23 = _mm256_unpacklo_ps(r2, r3), z23 = _mm256_unpackhi_ps(r2, r3);
+    return {F8(_mm256_shuffle_ps(xy01, xy23, 0x44)), F8(_mm256_shuffle_ps(xy01, xy23, 0xEE)),
+            F8(_mm256_shuffle_ps(z01, z23, 0x44))};
+  }
+};
 struct LaneOut {
   alignas(32) float x[kLanes], y[kLanes], z[kLanes];
   explicit LaneOut(const V8& v) {
@@ -145,7 +166,7 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
 
   // --- Per lane: misses, emission, the end of the path; gathering for the lanes that scatter.
   uint32_t scatter = 0;
-  LaneVecs p0, p1, p2, n0, n1, n2, ng, flat_normal, flat_tangent;
+  LaneRows p0, p1, p2, n0, n1, n2, ng, flat_normal, flat_tangent;
   LaneFloats bu, bv;
   alignas(32) int32_t material_of[kLanes] = {};
   uint32_t flat = 0, textured = 0, missed = 0;
