@@ -54,6 +54,7 @@ inline bool from_rtc_hit(const RTCRayHit& rh, Hit& hit) {
   hit.v = rh.hit.v;
   return true;
 }
+
 // Eight hit records (t, prim, u, v) from Embree's hit planes, a miss as Hit{}: a 4x8 transpose.
 // The planes hold eight readable lanes; hits [0, count) are written.
 void store_hits8(const float* tfar, const unsigned* prim_id, const float* u_plane,
