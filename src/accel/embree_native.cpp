@@ -265,11 +265,11 @@ void EmbreeNativeAccel::intersect_packets(size_t n, LoadPacket load, std::span<H
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   for (size_t i = 0; i < n; i += 8) {
     const size_t count = std::min<size_t>(8, n - i);
-    load(i, count, packet);
+    const __m256i active = _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(count)), lane);
+    load(i, count, active, packet);
     _mm256_store_si256(reinterpret_cast<__m256i*>(packet.hit.geomID), invalid);
     _mm256_store_si256(reinterpret_cast<__m256i*>(packet.hit.instID[0]), invalid);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(valid),
-                       _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(count)), lane));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(valid), active);
     rtcIntersect8(valid, scene_, &context, &packet);
     store_hits8(packet.ray.tfar, packet.hit.primID, packet.hit.u, packet.hit.v, packet.hit.geomID,
                 count, hits.data() + i);
@@ -326,17 +326,15 @@ void EmbreeNativeAccel::intersect_planes(const RayPlanes& rays, std::span<Hit> h
     intersect_stream(rays, hits);
     return;
   }
-  const auto load = [&rays](size_t i, size_t count, RTCRayHit8& packet) {
+  const auto load = [&rays](size_t i, size_t count, __m256i active, RTCRayHit8& packet) {
     // The last group reads only its rays: the planes may end there.
-    const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(count)),
-                                            _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
     float* const dst[6] = {packet.ray.org_x, packet.ray.org_y, packet.ray.org_z,
                            packet.ray.dir_x, packet.ray.dir_y, packet.ray.dir_z};
     const float* const src[6] = {rays.org[0], rays.org[1], rays.org[2],
                                  rays.dir[0], rays.dir[1], rays.dir[2]};
     for (int k = 0; k < 6; ++k)
-      _mm256_store_ps(
-          dst[k], count == 8 ? _mm256_loadu_ps(src[k] + i) : _mm256_maskload_ps(src[k] + i, mask));
+      _mm256_store_ps(dst[k], count == 8 ? _mm256_loadu_ps(src[k] + i)
+                                         : _mm256_maskload_ps(src[k] + i, active));
     _mm256_store_ps(packet.ray.tnear, _mm256_setzero_ps());
     _mm256_store_ps(packet.ray.tfar, _mm256_set1_ps(kInf));
   };
@@ -346,7 +344,7 @@ void EmbreeNativeAccel::intersect_planes(const RayPlanes& rays, std::span<Hit> h
 void EmbreeNativeAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
                                         RayCoherence coherence) const {
   if (coherence == RayCoherence::kIncoherent) {
-    const auto load = [rays](size_t i, size_t count, RTCRayHit8& packet) {
+    const auto load = [rays](size_t i, size_t count, __m256i, RTCRayHit8& packet) {
       static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, tfar) == 28);
       __m256 r[8];
       const float* src = reinterpret_cast<const float*>(rays.data() + i);

@@ -60,8 +60,9 @@ class EmbreeNativeAccel final : public Accel {
 
  private:
   void release();
-  // Closest hits of n rays as rtcIntersect8 packets; load(i, count, packet) writes the origins,
-  // directions, tnear and tfar of rays [i, i + count) into the packet's lanes [0, count).
+  // Closest hits of n rays as rtcIntersect8 packets; load(i, count, active, packet) writes the
+  // origins, directions, tnear and tfar of rays [i, i + count) into the packet's lanes
+  // [0, count), whose lanes of `active` are all ones.
   template <class LoadPacket>
   void intersect_packets(size_t n, LoadPacket load, std::span<Hit> hits) const;
   void intersect_stream(const RayPlanes& rays, std::span<Hit> hits) const;
