@@ -277,7 +277,9 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
   const TraversalRay r = ray;
   float tfar = tfar_io;
   bool found = false;
-  StackEntry stack[kStackSize];
+  // An any-hit query never reads an entry's distance, so its stack holds references alone
+  // (half the bytes to write and read back).
+  std::conditional_t<kAnyHit, NodeRef, StackEntry> stack[kStackSize];
   int sp = 0;
   NodeRef cur = start;
   for (;;) {
@@ -332,7 +334,7 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
           const int i = __builtin_ctz(mask);
           mask &= mask - 1;
           prefetch_block<N>(node.child[i]);
-          stack[sp++] = {node.child[i], 0.0f};
+          stack[sp++] = node.child[i];
         } while (mask);
         cur = c0;
         continue;
@@ -392,10 +394,15 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
         tfar_io = tfar;
         return found;
       }
-      const StackEntry& e = stack[--sp];
-      if (kAnyHit || e.dist <= tfar) {
-        cur = e.ref;
+      if constexpr (kAnyHit) {
+        cur = stack[--sp];
         break;
+      } else {
+        const StackEntry& e = stack[--sp];
+        if (e.dist <= tfar) {
+          cur = e.ref;
+          break;
+        }
       }
     }
   }
