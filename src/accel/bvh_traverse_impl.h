@@ -329,7 +329,7 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
       }
       if constexpr (kAnyHit) {
         // Any hit ends the query, so the order costs more than it saves: push the rest as
-        // they come (their distances are never read).
+        // they come.
         do {
           const int i = __builtin_ctz(mask);
           mask &= mask - 1;
