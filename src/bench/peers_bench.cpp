@@ -175,7 +175,7 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
   settings.max_bounces = o.peer.max_path_length;
   const size_t nt = o.times_s.size();
   std::vector<std::vector<double>> ours_rmse(nt), ours_ldr(nt), ours_spp(nt), denoised(nt),
-      denoised_ldr(nt);
+      denoised_ldr(nt), cached(nt), cached_ldr(nt);
   std::vector<double> ours_ms_per_spp;
   for (int r = 0; r < o.repeats; ++r) {
     if (r > 0)  // the first repeat's pathtracer timings were taken above
@@ -201,6 +201,22 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
         double t = 1000.0 * o.times_s[i];
         denoised[i].push_back(rmse_at_time(filtered.time_ms, filtered.rmse, t));
         denoised_ldr[i].push_back(rmse_at_time(filtered.time_ms, filtered.rmse_ldr, t));
+      }
+    }
+    if (o.cache_vertex > 0) {
+      RenderSettings with_cache = settings;
+      with_cache.quality.denoise = false;
+      with_cache.quality.cache_vertex = o.cache_vertex;
+      with_cache.quality.cache_cell = o.cache_cell;
+      with_cache.quality.cache_train = o.cache_train;
+      with_cache.quality.cache_levels = o.cache_levels;
+      with_cache.quality.cache_min_samples = o.cache_min_samples;
+      OurRun run_cached = run_ours(scene, *accel, with_cache, o.frame_ms, max_ms * 1.05, ours_truth,
+                                   ours_truth_ldr);
+      for (size_t i = 0; i < nt; ++i) {
+        double t = 1000.0 * o.times_s[i];
+        cached[i].push_back(rmse_at_time(run_cached.time_ms, run_cached.rmse, t));
+        cached_ldr[i].push_back(rmse_at_time(run_cached.time_ms, run_cached.rmse_ldr, t));
       }
     }
     say(fmt::format("repeat {}/{} done", r + 1, o.repeats));
@@ -233,6 +249,8 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
     row.ldr = column(ours_ldr[i], noise_mse_ldr);
     row.denoised = column(denoised[i], noise_mse);
     row.denoised_ldr = column(denoised_ldr[i], noise_mse_ldr);
+    row.cached = column(cached[i], noise_mse);
+    row.cached_ldr = column(cached_ldr[i], noise_mse_ldr);
     result.rows.push_back(row);
   }
   return result;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bench/embree_peer.h"
+#include "render/render_settings.h"
 
 namespace tuneray {
 
@@ -23,6 +24,12 @@ struct PeersBenchOptions {
   std::string bvh;                      // its parameters, as `render --bvh` takes them
   std::string truth_dir = "out/truth";  // cache of both references
   bool denoise = true;                  // also our runs with the denoiser on
+  // Also our runs with the radiance cache (QualityOptions::cache_vertex; 0: not run).
+  int cache_vertex = 1;
+  float cache_cell = QualityOptions{}.cache_cell;
+  int cache_levels = QualityOptions{}.cache_levels;
+  float cache_train = QualityOptions{}.cache_train;
+  int cache_min_samples = QualityOptions{}.cache_min_samples;
 };
 
 // Throws std::invalid_argument naming the first option out of range.
@@ -54,6 +61,8 @@ struct PeersRow {
   OurError ldr;         // both passed through the pathtracer's output transform
   // The same with the denoiser on (its filtering counted as frame time).
   OurError denoised, denoised_ldr;
+  // The same with the radiance cache on (biased, like the denoiser).
+  OurError cached, cached_ldr;
   // Against the truth, as the pathtracer's error is: the comparison the targets are judged by.
   double ratio(const OurError& ours) const { return ours.truth / embree_rmse; }
   // Against our reference as measured (higher: the reference's noise included).

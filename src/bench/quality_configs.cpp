@@ -32,6 +32,9 @@ void set_defaults(QualitySwitches& s) {
   s.one_texel = true;
 }
 
+// The radiance cache's rows end paths at the second hit (QualityOptions::cache_vertex).
+constexpr int kBenchCacheVertex = 1;
+
 using S = QualitySwitches;
 using A = QualityBenchOptions;
 
@@ -39,8 +42,8 @@ using A = QualityBenchOptions;
 // material evaluation, PCG numbers, a constant sky sampled uniformly, uniform sampling); each row
 // switches one technique on; "unbiased" switches on every technique that leaves the expected image
 // alone, "defaults" is QualityOptions{} (what the renderer does unless told otherwise),
-// "defaults+denoise" is what turning the denoiser on by default would give, "all" switches on every
-// one.
+// "defaults+denoise" and "defaults+cache" are what turning the denoiser or the radiance cache on
+// by default would give, "all" switches on every one.
 const std::vector<Config>& configurations() {
   static const std::vector<Config> configs = {
       {"baseline", [](S&, const A&) {}},
@@ -55,6 +58,7 @@ const std::vector<Config>& configurations() {
       {"regularize", [](S& s, const A&) { s.quality.regularize = true; }},
       {"clamp", [](S& s, const A& a) { set_clamp(s.quality, a); }},
       {"denoise", [](S& s, const A&) { s.quality.denoise = true; }},
+      {"cache", [](S& s, const A&) { s.quality.cache_vertex = kBenchCacheVertex; }},
       {"unbiased", [](S& s, const A&) { set_unbiased(s); }},
       {"defaults", [](S& s, const A&) { set_defaults(s); }},
       {"defaults+denoise",
@@ -62,10 +66,16 @@ const std::vector<Config>& configurations() {
          set_defaults(s);
          s.quality.denoise = true;
        }},
+      {"defaults+cache",
+       [](S& s, const A&) {
+         set_defaults(s);
+         s.quality.cache_vertex = kBenchCacheVertex;
+       }},
       {"all",
        [](S& s, const A& a) {
          set_unbiased(s);
          s.quality.lowres_sky = s.quality.regularize = s.quality.denoise = true;
+         s.quality.cache_vertex = kBenchCacheVertex;
          set_clamp(s.quality, a);
        }},
   };

@@ -14,6 +14,7 @@
 #include "render/environment_light.h"
 #include "render/light_sampler.h"
 #include "render/path_wave.h"
+#include "render/radiance_cache.h"
 #include "render/render_settings.h"
 #include "render/sampler.h"
 #include "render/shading_geometry.h"
@@ -87,6 +88,12 @@ class PathIntegrator {
       prefetch_hit_vertices(scene_, hit.prim);
   }
 
+  // The radiance cache that paths end into at settings().quality.cache_vertex (null: none). Read
+  // by shade8, so it must not change while a pass runs; the paths that train it are marked in the
+  // wave (PathWave::cache_key) and the scheduler hands their records to it between passes.
+  void use_radiance_cache(const RadianceCache* cache) { cache_ = cache; }
+  const RadianceCache* radiance_cache() const { return cache_; }
+
   const LightSampler& lights() const { return lights_; }
   const Accel& accel() const { return accel_; }
   const RenderSettings& settings() const { return settings_; }
@@ -118,6 +125,7 @@ class PathIntegrator {
   LightSampler lights_;
   std::vector<BsdfParams> material_bsdf_;  // untextured_bsdf of each scene material
   MaterialPlanes material_planes_;
+  const RadianceCache* cache_ = nullptr;
 };
 
 }  // namespace tuneray

@@ -5,6 +5,7 @@
 // emitters hit, texture lookups, the dielectric) runs per lane with the scalar code. Every step
 // is lane by lane, so a path's result does not depend on its neighbours.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "render/bsdf8.h"
@@ -109,6 +110,16 @@ V8 offset_ray_origin(const V8& p, const V8& n, const V8& dir) {
   return p + n * simd::select(dot(n, dir) >= F8(0.0f), eps, -eps);
 }
 
+uint64_t cache_jitter_hash(Vec3f p, uint32_t slot) {
+  uint64_t k = (uint64_t{std::bit_cast<uint32_t>(p.x)} << 32 | std::bit_cast<uint32_t>(p.y)) ^
+               (uint64_t{std::bit_cast<uint32_t>(p.z)} << 16) ^ slot;
+  k ^= k >> 30;
+  k *= 0xbf58476d1ce4e5b9ull;
+  k ^= k >> 27;
+  k *= 0x94d049bb133111ebull;
+  return k ^ (k >> 31);
+}
+
 F8 power_heuristic(F8 a, F8 b) {
   const F8 a2 = a * a, b2 = b * b;
   return simd::select(a2 + b2 > F8(0.0f), a2 / (a2 + b2), F8(0.0f));
@@ -173,6 +184,10 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   for (int i = 0; i < count; ++i) {
     const size_t k = begin + static_cast<size_t>(i);
     shadow[i].active = false;
+    // A path training the cache: its tail is what it adds from here on (before this vertex's
+    // emission, after the cached vertex's light sample).
+    if (cache_ && w.depth[k] == settings_.quality.cache_vertex + 1 && w.cache_key(k) != 0)
+      w.snapshot_for_cache(k);
     const Hit& hit = hits[i];
     if (!hit.valid()) {
       missed |= 1u << i;
@@ -443,6 +458,36 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   const F8 survive = simd::min(F8(0.95f), simd::max_component(new_beta));
   going = going.and_not(roulette & (u_roulette >= survive));
   new_beta = simd::select(roulette, new_beta * (1.0f / survive), new_beta);
+
+  // The radiance cache's vertex: a Lambertian path ends into a ready cell (unless it is drawn to
+  // train), or goes on marked to train its cell.
+  if (cache_) {
+    const M8 at_cache = is_lambert & (depth == simd::I8(settings_.quality.cache_vertex));
+    if (at_cache.any()) {
+      const LaneOut at(position), side(normal), albedo(base), throughput(beta);
+      const LaneScalars train(load_u(kSpare));
+      const QualityOptions& q = settings_.quality;
+      uint32_t ended = 0;
+      for (uint32_t m = at_cache.bits(); m; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        const size_t k = begin + static_cast<size_t>(i);
+        const uint32_t material = static_cast<uint32_t>(material_of[i]);
+        // The lookup's jitter from the point itself: no sampler dimension is spent on it.
+        const uint64_t bits = cache_jitter_hash(at[i], w.slot[k]);
+        const float j0 = static_cast<float>(bits & 0xffff) * 0x1p-16f - 0.5f;
+        const float j1 = static_cast<float>((bits >> 16) & 0xffff) * 0x1p-16f - 0.5f;
+        Color incident;
+        if (train[i] >= q.cache_train &&
+            cache_->lookup(at[i], side[i], material, j0, j1, q.cache_min_samples, incident)) {
+          w.add_radiance(k, throughput[i] * albedo[i] * incident);
+          ended |= 1u << i;
+        } else if ((going.bits() >> i) & 1) {
+          w.mark_for_cache(k, cache_->key(at[i], side[i], material), throughput[i], albedo[i]);
+        }
+      }
+      going = going.and_not(M8::from_bits(ended));
+    }
+  }
 
   // The state of the paths that go on (the others end here, their state no longer read).
   store3(PathWave::kBetaX, simd::select(going, new_beta, beta));

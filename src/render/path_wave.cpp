@@ -35,7 +35,9 @@ void PathWave::compact(std::span<const uint8_t> alive) {
     }
     // Loads before stores: the packed group lands at kept <= i, over lanes already read.
     const __m256i perm = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack.index[mask]));
-    for (auto& v : f) {
+    const int planes = with_cache ? kFloatPlanes : kCorePlanes;
+    for (int k = 0; k < planes; ++k) {
+      std::vector<float>& v = f[static_cast<size_t>(k)];
       const __m256 x = _mm256_permutevar8x32_ps(_mm256_loadu_ps(v.data() + i), perm);
       _mm256_storeu_ps(v.data() + kept, x);
     }

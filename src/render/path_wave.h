@@ -7,6 +7,8 @@
 #include <immintrin.h>
 
 #include <array>
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -43,13 +45,27 @@ struct PathWave {
     kPrevZ,         // the previous vertex (for the MIS of emitters it hits)
     kPrevPdf,       // the solid-angle pdf of the direction sampled there
     kMaxRoughness,  // path-space regularization: the roughest vertex so far
+    // A path that trains the radiance cache (render/radiance_cache.h): its radiance as it
+    // arrived at the vertex after the cached one, its throughput into the cached vertex times
+    // the albedo there (NaN in a channel the path did not carry), and its cell's key (as the
+    // bits of two floats; 0: the path trains nothing). Only compacted with_cache.
+    kTrainLX,
+    kTrainLY,
+    kTrainLZ,
+    kTrainBetaX,
+    kTrainBetaY,
+    kTrainBetaZ,
+    kCacheKeyLo,
+    kCacheKeyHi,
     kFloatPlanes
   };
+  static constexpr int kCorePlanes = kTrainLX;
   // Bits of `flags`.
   static constexpr int32_t kPreviousWasDelta = 1;  // the last direction came from a Dirac lobe
   static constexpr int32_t kSpecularChain = 2;     // every vertex so far was specular
 
-  size_t size = 0;  // live paths, at positions [0, size)
+  size_t size = 0;          // live paths, at positions [0, size)
+  bool with_cache = false;  // the radiance cache's planes are in use
   std::array<std::vector<float>, kFloatPlanes> f;
   std::vector<int32_t> depth;  // index of the vertex the ray will hit (0 = camera ray)
   std::vector<int32_t> flags;
@@ -78,6 +94,7 @@ struct PathWave {
     p[kPrevX][i] = ray.org.x, p[kPrevY][i] = ray.org.y, p[kPrevZ][i] = ray.org.z;
     p[kPrevPdf][i] = 0.0f;
     p[kMaxRoughness][i] = 0.0f;
+    p[kCacheKeyLo][i] = p[kCacheKeyHi][i] = 0.0f;
     depth[i] = 0;
     flags[i] = kPreviousWasDelta | kSpecularChain;
     slot[i] = s;
@@ -98,6 +115,10 @@ struct PathWave {
     org.z.store(plane(kPrevZ) + begin);
     simd::F8(0.0f).store(plane(kPrevPdf) + begin);
     simd::F8(0.0f).store(plane(kMaxRoughness) + begin);
+    if (with_cache) {
+      simd::F8(0.0f).store(plane(kCacheKeyLo) + begin);
+      simd::F8(0.0f).store(plane(kCacheKeyHi) + begin);
+    }
     simd::I8(0).store(depth.data() + begin);
     simd::I8(kPreviousWasDelta | kSpecularChain).store(flags.data() + begin);
     const simd::I8 index(_mm256_add_epi32(_mm256_set1_epi32(static_cast<int32_t>(begin)),
@@ -109,6 +130,40 @@ struct PathWave {
   Color radiance(size_t i) const { return {plane(kLX)[i], plane(kLY)[i], plane(kLZ)[i]}; }
   Color camera_radiance(size_t i) const {
     return {plane(kCameraX)[i], plane(kCameraY)[i], plane(kCameraZ)[i]};
+  }
+  uint64_t cache_key(size_t i) const {
+    return std::bit_cast<uint32_t>(plane(kCacheKeyLo)[i]) |
+           uint64_t{std::bit_cast<uint32_t>(plane(kCacheKeyHi)[i])} << 32;
+  }
+  void set_cache_key(size_t i, uint64_t key) {
+    plane(kCacheKeyLo)[i] = std::bit_cast<float>(static_cast<uint32_t>(key));
+    plane(kCacheKeyHi)[i] = std::bit_cast<float>(static_cast<uint32_t>(key >> 32));
+  }
+  // Path i trains the cache's cell `key`; it arrived at the cached vertex with throughput
+  // `beta`, and the albedo there is `albedo`.
+  void mark_for_cache(size_t i, uint64_t key, Color beta, Color albedo) {
+    set_cache_key(i, key);
+    const float b[3] = {beta.x, beta.y, beta.z}, a[3] = {albedo.x, albedo.y, albedo.z};
+    // A channel the path no longer carries says nothing about the light there (a red wall
+    // before the vertex leaves green and blue at 0): it is no sample, not a zero.
+    for (int k = 0; k < 3; ++k)
+      plane(kTrainBetaX + k)[i] = b[k] > 0.0f ? b[k] * a[k] : std::nanf("");
+  }
+  // A training path arrives at the vertex after its cached one: what it has so far.
+  void snapshot_for_cache(size_t i) {
+    for (int k = 0; k < 3; ++k) plane(kTrainLX + k)[i] = plane(kLX + k)[i];
+  }
+  // What a training path found beyond its cached vertex, over its throughput into it times the
+  // albedo there: the cell's incident term (radiance_cache.h); NaN where it is no sample. A
+  // channel of albedo 0 reflects nothing, so its (valid) sample is 0.
+  Color cache_incident(size_t i) const {
+    float c[3];
+    for (int k = 0; k < 3; ++k) {
+      const float weight = plane(kTrainBetaX + k)[i];
+      c[k] = weight > 0.0f ? (plane(kLX + k)[i] - plane(kTrainLX + k)[i]) / weight
+                           : (weight == 0.0f ? 0.0f : weight);
+    }
+    return {c[0], c[1], c[2]};
   }
   void add_radiance(size_t i, Color c) {
     plane(kLX)[i] += c.x;

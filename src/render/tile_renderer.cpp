@@ -76,7 +76,8 @@ struct TileRenderer::WaveBuffers {
   std::vector<uint32_t> shadow_owner;  // wave position
   std::vector<Color> shadow_contribution;
   std::vector<uint8_t> occluded, alive;
-  std::vector<Color> result;  // per slot
+  std::vector<Color> result;                         // per slot
+  std::vector<RadianceCache::Record> cache_records;  // of this thread's training paths
 };
 
 struct TileRenderer::WavePool {
@@ -106,6 +107,21 @@ TileRenderer::TileRenderer(const Scene& scene, const Accel& accel, const CameraD
   const uint32_t width = static_cast<uint32_t>(std::max(1, settings.width));
   wave_pixels_.reserve(order.size());
   for (uint32_t p : order) wave_pixels_.push_back({p % width, p / width});
+  const QualityOptions& q = settings.quality;
+  if (q.cache_vertex > 0 && q.cache_vertex < settings.max_bounces) {
+    cache_ = std::make_unique<RadianceCache>(scene.bounds(), q.cache_cell, q.cache_levels);
+    integrator_.use_radiance_cache(cache_.get());
+  }
+}
+
+void TileRenderer::train_cache() const {
+  if (!cache_) return;
+  std::vector<RadianceCache::Record> all;
+  for (WaveBuffers& b : wave_pool_->buffers) {
+    all.insert(all.end(), b.cache_records.begin(), b.cache_records.end());
+    b.cache_records.clear();
+  }
+  cache_->add(all);
 }
 
 TileRenderer::~TileRenderer() = default;
@@ -143,19 +159,23 @@ PassStats TileRenderer::run(Film& film, const PixelWork& work,
   // Resolved once per pass, before any pixel of it is written, so the result does not depend
   // on the order in which threads finish.
   const ClampThresholds clamp = clamp_for(film);
+  PassStats stats;
   if (settings_.quality.wavefront) {
-    PassStats stats = run_wavefront(film, work, clamp);
+    stats = run_wavefront(film, work, clamp);
     if (on_tile_done)
       for (int i = 0; i < tile_count(); ++i) on_tile_done();
-    return stats;
+  } else {
+    stats = run_tiles(film, work, clamp, on_tile_done);
   }
-  return run_tiles(film, work, clamp, on_tile_done);
+  train_cache();
+  return stats;
 }
 
 void TileRenderer::start_paths(WaveBuffers& b, const ClampThresholds& clamp) const {
   const size_t paths = b.ids.size();
   const size_t padded = (paths + 7) / 8 * 8;
   if (!b.samplers) b.samplers = prototype_.make_bank();
+  b.wave.with_cache = cache_ != nullptr;
   float* camera_u[4];
   for (int j = 0; j < 4; ++j) {
     b.camera_u[j].resize(padded);
@@ -283,6 +303,10 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
       if ((b.alive[i / 8] >> (i % 8)) & 1) continue;
       const uint32_t slot = wave.slot[i];
       b.result[slot] = integrator_.finish(wave, i, local, b.clamp[slot]);
+      if (const uint64_t key = wave.with_cache ? wave.cache_key(i) : 0) {
+        const PixelSampleId& id = b.ids[slot];
+        b.cache_records.push_back({key, id.y, id.x, id.index, wave.cache_incident(i)});
+      }
     }
     wave.compact(b.alive);
   }

@@ -46,12 +46,13 @@ TEST_F(QualityBench, EveryConfigurationGetsARowPerFrameAndTheTruthIsShared) {
     EXPECT_GT(c["time_over_budget"].get<double>(), 0.0) << c["config"];
   }
   const std::vector<std::string> expected = {
-      "baseline", "wavefront", "sky-rgba",         "one-texel",  "branchless", "bluenoise",
-      "bsdf-sky", "adaptive",  "lowres-sky",       "regularize", "clamp",      "denoise",
-      "unbiased", "defaults",  "defaults+denoise", "all"};
+      "baseline", "wavefront", "sky-rgba",   "one-texel",        "branchless",     "bluenoise",
+      "bsdf-sky", "adaptive",  "lowres-sky", "regularize",       "clamp",          "denoise",
+      "cache",    "unbiased",  "defaults",   "defaults+denoise", "defaults+cache", "all"};
   EXPECT_EQ(names, expected);
-  const std::vector<std::string> biased = {"lowres-sky", "regularize",       "clamp",
-                                           "denoise",    "defaults+denoise", "all"};
+  const std::vector<std::string> biased = {"lowres-sky",     "regularize", "clamp",
+                                           "denoise",        "cache",      "defaults+denoise",
+                                           "defaults+cache", "all"};
   for (const auto& c : configs) {
     if (std::find(biased.begin(), biased.end(), c["config"]) == biased.end()) {
       EXPECT_EQ(c["bias"].get<double>(), 0.0) << c["config"];
