@@ -5,7 +5,6 @@
 // emitters hit, texture lookups, the dielectric) runs per lane with the scalar code. Every step
 // is lane by lane, so a path's result does not depend on its neighbours.
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include "render/bsdf8.h"
@@ -108,16 +107,6 @@ V8 offset_ray_origin(const V8& p, const V8& n, const V8& dir) {
   const F8 magnitude = simd::max(simd::max(simd::abs(p.x), simd::abs(p.y)), simd::abs(p.z));
   const F8 eps = 1e-4f * simd::max(F8(1.0f), magnitude) * 0.05f;
   return p + n * simd::select(dot(n, dir) >= F8(0.0f), eps, -eps);
-}
-
-uint64_t cache_jitter_hash(Vec3f p, uint32_t slot) {
-  uint64_t k = (uint64_t{std::bit_cast<uint32_t>(p.x)} << 32 | std::bit_cast<uint32_t>(p.y)) ^
-               (uint64_t{std::bit_cast<uint32_t>(p.z)} << 16) ^ slot;
-  k ^= k >> 30;
-  k *= 0xbf58476d1ce4e5b9ull;
-  k ^= k >> 27;
-  k *= 0x94d049bb133111ebull;
-  return k ^ (k >> 31);
 }
 
 F8 power_heuristic(F8 a, F8 b) {
@@ -472,10 +461,8 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
         const int i = __builtin_ctz(m);
         const size_t k = begin + static_cast<size_t>(i);
         const uint32_t material = static_cast<uint32_t>(material_of[i]);
-        // The lookup's jitter from the point itself: no sampler dimension is spent on it.
-        const uint64_t bits = cache_jitter_hash(at[i], w.slot[k]);
-        const float j0 = static_cast<float>(bits & 0xffff) * 0x1p-16f - 0.5f;
-        const float j1 = static_cast<float>((bits >> 16) & 0xffff) * 0x1p-16f - 0.5f;
+        float j0, j1;
+        RadianceCache::jitter(at[i], w.slot[k], j0, j1);
         Color incident;
         if (train[i] >= q.cache_train &&
             cache_->lookup(at[i], side[i], material, j0, j1, q.cache_min_samples, incident)) {

@@ -129,6 +129,24 @@ TEST(RadianceCache, SumsDoNotDependOnTheOrderRecordsArrive) {
     }
 }
 
+TEST(RadianceCache, JitterStaysInsideHalfACellAndVariesWithThePoint) {
+  float lo = 1, hi = -1, previous = 2;
+  int changes = 0;
+  for (uint32_t i = 0; i < 1000; ++i) {
+    float j0, j1;
+    RadianceCache::jitter(Vec3f(0.001f * static_cast<float>(i), 0.5f, 0.25f), 7, j0, j1);
+    lo = std::min({lo, j0, j1});
+    hi = std::max({hi, j0, j1});
+    changes += j0 != previous ? 1 : 0;
+    previous = j0;
+  }
+  EXPECT_GE(lo, -0.5f);
+  EXPECT_LT(hi, 0.5f);
+  EXPECT_LT(lo, -0.45f);  // spread over the whole range
+  EXPECT_GT(hi, 0.45f);
+  EXPECT_GT(changes, 990);
+}
+
 TEST(RadianceCache, AFullTableTakesNoNewCells) {
   RadianceCache cache(unit_box(), 1.0f / 64, 1, 4);  // 16 slots, 12 usable
   std::vector<RadianceCache::Record> records;
