@@ -462,7 +462,7 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
         const size_t k = begin + static_cast<size_t>(i);
         const uint32_t material = static_cast<uint32_t>(material_of[i]);
         float j0, j1;
-        RadianceCache::jitter(at[i], w.slot[k], j0, j1);
+        RadianceCache::jitter(at[i], j0, j1);
         Color incident;
         if (train[i] >= q.cache_train &&
             cache_->lookup(at[i], side[i], material, j0, j1, q.cache_min_samples, incident)) {

@@ -73,10 +73,10 @@ uint64_t RadianceCache::key(Vec3f p, Vec3f n, uint32_t material) const {
   return key_at(p, n, material, levels_ - 1, 0, 0);
 }
 
-void RadianceCache::jitter(Vec3f p, uint32_t salt, float& j0, float& j1) {
+void RadianceCache::jitter(Vec3f p, float& j0, float& j1) {
   const uint64_t bits =
       mix((uint64_t{std::bit_cast<uint32_t>(p.x)} << 32 | std::bit_cast<uint32_t>(p.y)) ^
-          uint64_t{std::bit_cast<uint32_t>(p.z)} << 16 ^ salt);
+          uint64_t{std::bit_cast<uint32_t>(p.z)} << 16);
   j0 = static_cast<float>(bits & 0xffff) * 0x1p-16f - 0.5f;
   j1 = static_cast<float>((bits >> 16) & 0xffff) * 0x1p-16f - 0.5f;
 }

@@ -48,9 +48,9 @@ class RadianceCache {
   // instead of one cell's box, without the steps at cell borders.
   bool lookup(Vec3f p, Vec3f n, uint32_t material, float j0, float j1, int min_samples,
               Color& incident) const;
-  // A lookup's jitter (j0, j1 in [-0.5, 0.5)) hashed from the point and a salt, so that no
-  // sampler dimension is spent on it.
-  static void jitter(Vec3f p, uint32_t salt, float& j0, float& j1);
+  // A lookup's jitter (j0, j1 in [-0.5, 0.5)) hashed from the point's bits: no sampler dimension
+  // is spent on it, and it depends on nothing a scheduler chooses (which path slot, which thread).
+  static void jitter(Vec3f p, float& j0, float& j1);
   // Adds the records to their cells at every level, sorted first so that the sums do not depend
   // on the order they came in. Not while lookups run. A full table takes no new cells.
   void add(std::vector<Record>& records);
