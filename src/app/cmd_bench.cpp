@@ -5,6 +5,7 @@
 
 #include "app/cli_parse.h"
 #include "app/commands.h"
+#include "app/quality_cli.h"
 
 namespace tuneray {
 
@@ -157,26 +158,7 @@ CommandAction add_bench_command(CLI::App& app) {
   p->add_option("--ecs", peers->peer.scene, "Embree's scene (.ecs, its .obj beside it)")
       ->capture_default_str();
   p->add_flag("!--no-denoise", peers->denoise, "Skip the runs with the denoiser");
-  p->add_option("--cache-vertex", peers->cache_vertex,
-                "Also runs with the radiance cache at this vertex (0: none; see render --help)")
-      ->check(CLI::Range(0, 1 << 16))
-      ->capture_default_str();
-  p->add_option("--cache-cell", peers->cache_cell,
-                "The radiance cache's cell side (share of the "
-                "scene's diagonal)")
-      ->check(CLI::Range(1.0f / 4096, 1.0f))
-      ->capture_default_str();
-  p->add_option("--cache-levels", peers->cache_levels, "Levels of radiance cache cells")
-      ->check(CLI::Range(1, 4))
-      ->capture_default_str();
-  p->add_option("--cache-min-samples", peers->cache_min_samples,
-                "Records a radiance cache cell needs before paths end into it")
-      ->check(CLI::Range(1, 1 << 20))
-      ->capture_default_str();
-  p->add_option("--cache-train", peers->cache_train,
-                "Share of the paths at a ready cache cell that go on and train it")
-      ->check(CLI::Range(0.0f, 1.0f))
-      ->capture_default_str();
+  add_radiance_cache_options(p, peers->cache);  // vertex 0: no cached columns
   p->add_option("--json", *peers_json, "Write results as JSON");
 
   return [=] {

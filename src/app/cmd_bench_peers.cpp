@@ -26,7 +26,7 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
   fmt::print("{:>7} {:>11} {:>11} {:>11} {:>9} {:>11} {:>12}", "time s", "embree RMSE", "tuneray",
              "tuneray 8b", "spp", "ratio raw", "ratio 8-bit");
   if (o.denoise) fmt::print(" {:>14} {:>15}", "denoised raw", "denoised 8-bit");
-  if (o.cache_vertex > 0) fmt::print(" {:>12} {:>13}", "cached raw", "cached 8-bit");
+  if (o.cache.vertex > 0) fmt::print(" {:>12} {:>13}", "cached raw", "cached 8-bit");
   fmt::print("\n");
   for (const PeersRow& row : r.rows) {
     fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.5f} {:>9.1f} {:>11.3f} {:>12.3f}", row.time_s,
@@ -34,7 +34,7 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
                row.ratio(row.ldr));
     if (o.denoise)
       fmt::print(" {:>14.3f} {:>15.3f}", row.ratio(row.denoised), row.ratio(row.denoised_ldr));
-    if (o.cache_vertex > 0)
+    if (o.cache.vertex > 0)
       fmt::print(" {:>12.3f} {:>13.3f}", row.ratio(row.cached), row.ratio(row.cached_ldr));
     fmt::print("\n");
   }
@@ -44,12 +44,12 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
       "[0,1], floor(255.01 x)/255), as the pathtracer's own numbers are. Denoised: the same\n"
       "runs with --denoise, the filtering counted as frame time (ratios to the pathtracer).\n"
       "Cached: the same runs with the radiance cache (--cache-vertex {}; biased).\n",
-      o.cache_vertex);
+      o.cache.vertex);
   fmt::print("\nAs measured against tuneray's reference (its noise included):\n");
   fmt::print("{:>7} {:>11} {:>11} {:>11} {:>12}", "time s", "tuneray", "tuneray 8b", "ratio raw",
              "ratio 8-bit");
   if (o.denoise) fmt::print(" {:>14} {:>15}", "denoised raw", "denoised 8-bit");
-  if (o.cache_vertex > 0) fmt::print(" {:>12} {:>13}", "cached raw", "cached 8-bit");
+  if (o.cache.vertex > 0) fmt::print(" {:>12} {:>13}", "cached raw", "cached 8-bit");
   fmt::print("\n");
   for (const PeersRow& row : r.rows) {
     fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.3f} {:>12.3f}", row.time_s, row.raw.measured,
@@ -57,7 +57,7 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
     if (o.denoise)
       fmt::print(" {:>14.3f} {:>15.3f}", row.measured_ratio(row.denoised),
                  row.measured_ratio(row.denoised_ldr));
-    if (o.cache_vertex > 0)
+    if (o.cache.vertex > 0)
       fmt::print(" {:>12.3f} {:>13.3f}", row.measured_ratio(row.cached),
                  row.measured_ratio(row.cached_ldr));
     fmt::print("\n");
@@ -73,9 +73,9 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
                       {"accel", o.accel},
                       {"bvh", o.bvh},
                       {"denoise_column", o.denoise},
-                      {"cache_vertex", o.cache_vertex},
-                      {"cache_cell", o.cache_cell},
-                      {"cache_train", o.cache_train},
+                      {"cache_vertex", o.cache.vertex},
+                      {"cache_cell", o.cache.cell},
+                      {"cache_train", o.cache.train},
                       {"skipped", r.skipped}};
   if (r.skipped) {
     j["reason"] = r.reason;
@@ -107,7 +107,7 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
       add(out, "denoised", row, row.denoised);
       add(out, "denoised_8bit", row, row.denoised_ldr);
     }
-    if (o.cache_vertex > 0) {
+    if (o.cache.vertex > 0) {
       add(out, "cached", row, row.cached);
       add(out, "cached_8bit", row, row.cached_ldr);
     }

@@ -9,6 +9,30 @@
 
 namespace tuneray {
 
+void add_radiance_cache_options(CLI::App* cmd, RadianceCacheOptions& c) {
+  cmd->add_option("--cache-vertex", c.vertex,
+                  "Biased: paths end into a world-space radiance cache at this vertex (1 = the "
+                  "second hit) on diffuse surfaces; 0 = off")
+      ->check(CLI::Range(0, 1 << 16))
+      ->capture_default_str();
+  cmd->add_option("--cache-cell", c.cell,
+                  "The radiance cache's cell side as a share of the scene's diagonal")
+      ->check(CLI::Range(1.0f / 4096, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--cache-levels", c.levels,
+                  "Levels of radiance cache cells, each half the side of the one before")
+      ->check(CLI::Range(1, RadianceCache::kMaxLevels))
+      ->capture_default_str();
+  cmd->add_option("--cache-train", c.train,
+                  "Share of the paths at a ready cache cell that go on and train it")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--cache-min-samples", c.min_samples,
+                  "Training records a cache cell needs before paths end into it")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+}
+
 void add_quality_options(CLI::App* cmd, QualityCli& q) {
   QualityOptions& o = q.options;
   cmd->add_option("--scheduler", q.scheduler,
@@ -47,27 +71,7 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
   cmd->add_flag("--denoise", o.denoise,
                 "Biased: the written image is filtered by the edge-avoiding denoiser guided by "
                 "first-hit albedo and normal (the film itself stays unbiased)");
-  cmd->add_option("--cache-vertex", o.cache_vertex,
-                  "Biased: paths end into a world-space radiance cache at this vertex (1 = the "
-                  "second hit) on diffuse surfaces; 0 = off")
-      ->check(CLI::Range(0, 1 << 16))
-      ->capture_default_str();
-  cmd->add_option("--cache-cell", o.cache_cell,
-                  "The radiance cache's cell side as a share of the scene's diagonal")
-      ->check(CLI::Range(1.0f / 4096, 1.0f))
-      ->capture_default_str();
-  cmd->add_option("--cache-levels", o.cache_levels,
-                  "Levels of radiance cache cells, each half the side of the one before")
-      ->check(CLI::Range(1, RadianceCache::kMaxLevels))
-      ->capture_default_str();
-  cmd->add_option("--cache-train", o.cache_train,
-                  "Share of the paths at a ready cache cell that go on and train it")
-      ->check(CLI::Range(0.0f, 1.0f))
-      ->capture_default_str();
-  cmd->add_option("--cache-min-samples", o.cache_min_samples,
-                  "Training records a cache cell needs before paths end into it")
-      ->check(CLI::Range(1, 1 << 20))
-      ->capture_default_str();
+  add_radiance_cache_options(cmd, o.cache);
   cmd->add_flag("--adaptive", q.adaptive_on,
                 std::string("Adaptive sampling in frame-budget mode: extra samples where the "
                             "error is highest") +

@@ -22,6 +22,8 @@ struct QualityCli {
 };
 
 void add_quality_options(CLI::App* cmd, QualityCli& q);
+// The radiance cache's options (part of add_quality_options; `bench peers` takes them alone).
+void add_radiance_cache_options(CLI::App* cmd, RadianceCacheOptions& c);
 // Validates and returns the options (throws std::invalid_argument on a bad value).
 QualityOptions resolve_quality(const QualityCli& q);
 

@@ -203,14 +203,10 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
         denoised_ldr[i].push_back(rmse_at_time(filtered.time_ms, filtered.rmse_ldr, t));
       }
     }
-    if (o.cache_vertex > 0) {
+    if (o.cache.vertex > 0) {
       RenderSettings with_cache = settings;
       with_cache.quality.denoise = false;
-      with_cache.quality.cache_vertex = o.cache_vertex;
-      with_cache.quality.cache_cell = o.cache_cell;
-      with_cache.quality.cache_train = o.cache_train;
-      with_cache.quality.cache_levels = o.cache_levels;
-      with_cache.quality.cache_min_samples = o.cache_min_samples;
+      with_cache.quality.cache = o.cache;
       OurRun run_cached = run_ours(scene, *accel, with_cache, o.frame_ms, max_ms * 1.05, ours_truth,
                                    ours_truth_ldr);
       for (size_t i = 0; i < nt; ++i) {

@@ -24,12 +24,8 @@ struct PeersBenchOptions {
   std::string bvh;                      // its parameters, as `render --bvh` takes them
   std::string truth_dir = "out/truth";  // cache of both references
   bool denoise = true;                  // also our runs with the denoiser on
-  // Also our runs with the radiance cache (QualityOptions::cache_vertex; 0: not run).
-  int cache_vertex = 1;
-  float cache_cell = QualityOptions{}.cache_cell;
-  int cache_levels = QualityOptions{}.cache_levels;
-  float cache_train = QualityOptions{}.cache_train;
-  int cache_min_samples = QualityOptions{}.cache_min_samples;
+  // Also our runs with the radiance cache (vertex 0: not run).
+  RadianceCacheOptions cache = {.vertex = 1};
 };
 
 // Throws std::invalid_argument naming the first option out of range.

@@ -32,7 +32,7 @@ void set_defaults(QualitySwitches& s) {
   s.one_texel = true;
 }
 
-// The radiance cache's rows end paths at the second hit (QualityOptions::cache_vertex).
+// The radiance cache's rows end paths at the second hit (RadianceCacheOptions::vertex).
 constexpr int kBenchCacheVertex = 1;
 
 using S = QualitySwitches;
@@ -58,7 +58,7 @@ const std::vector<Config>& configurations() {
       {"regularize", [](S& s, const A&) { s.quality.regularize = true; }},
       {"clamp", [](S& s, const A& a) { set_clamp(s.quality, a); }},
       {"denoise", [](S& s, const A&) { s.quality.denoise = true; }},
-      {"cache", [](S& s, const A&) { s.quality.cache_vertex = kBenchCacheVertex; }},
+      {"cache", [](S& s, const A&) { s.quality.cache.vertex = kBenchCacheVertex; }},
       {"unbiased", [](S& s, const A&) { set_unbiased(s); }},
       {"defaults", [](S& s, const A&) { set_defaults(s); }},
       {"defaults+denoise",
@@ -69,13 +69,13 @@ const std::vector<Config>& configurations() {
       {"defaults+cache",
        [](S& s, const A&) {
          set_defaults(s);
-         s.quality.cache_vertex = kBenchCacheVertex;
+         s.quality.cache.vertex = kBenchCacheVertex;
        }},
       {"all",
        [](S& s, const A& a) {
          set_unbiased(s);
          s.quality.lowres_sky = s.quality.regularize = s.quality.denoise = true;
-         s.quality.cache_vertex = kBenchCacheVertex;
+         s.quality.cache.vertex = kBenchCacheVertex;
          set_clamp(s.quality, a);
        }},
   };

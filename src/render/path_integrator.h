@@ -88,7 +88,7 @@ class PathIntegrator {
       prefetch_hit_vertices(scene_, hit.prim);
   }
 
-  // The radiance cache that paths end into at settings().quality.cache_vertex (null: none). Read
+  // The radiance cache that paths end into at settings().quality.cache.vertex (null: none). Read
   // by shade8, so it must not change while a pass runs; the paths that train it are marked in the
   // wave (PathWave::cache_key) and the scheduler hands their records to it between passes.
   void use_radiance_cache(const RadianceCache* cache) { cache_ = cache; }

@@ -175,7 +175,7 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
     shadow[i].active = false;
     // A path training the cache: its tail is what it adds from here on (before this vertex's
     // emission, after the cached vertex's light sample).
-    if (cache_ && w.depth[k] == settings_.quality.cache_vertex + 1 && w.cache_key(k) != 0)
+    if (cache_ && w.depth[k] == settings_.quality.cache.vertex + 1 && w.cache_key(k) != 0)
       w.snapshot_for_cache(k);
     const Hit& hit = hits[i];
     if (!hit.valid()) {
@@ -451,11 +451,11 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   // The radiance cache's vertex: a Lambertian path ends into a ready cell (unless it is drawn to
   // train), or goes on marked to train its cell.
   if (cache_) {
-    const M8 at_cache = is_lambert & (depth == simd::I8(settings_.quality.cache_vertex));
+    const M8 at_cache = is_lambert & (depth == simd::I8(settings_.quality.cache.vertex));
     if (at_cache.any()) {
       const LaneOut at(position), side(normal), albedo(base), throughput(beta);
       const LaneScalars train(load_u(kSpare));
-      const QualityOptions& q = settings_.quality;
+      const RadianceCacheOptions& q = settings_.quality.cache;
       uint32_t ended = 0;
       for (uint32_t m = at_cache.bits(); m; m &= m - 1) {
         const int i = __builtin_ctz(m);
@@ -464,8 +464,8 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
         float j0, j1;
         RadianceCache::jitter(at[i], j0, j1);
         Color incident;
-        if (train[i] >= q.cache_train &&
-            cache_->lookup(at[i], side[i], material, j0, j1, q.cache_min_samples, incident)) {
+        if (train[i] >= q.train &&
+            cache_->lookup(at[i], side[i], material, j0, j1, q.min_samples, incident)) {
           w.add_radiance(k, throughput[i] * albedo[i] * incident);
           ended |= 1u << i;
         } else if ((going.bits() >> i) & 1) {

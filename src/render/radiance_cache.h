@@ -1,6 +1,6 @@
 // A world-space radiance cache for diffuse surfaces: hashed grids of cells (position, the side
 // of the surface, the material) that hold the mean of what the path tracer found beyond a
-// vertex, so that later paths can end there (QualityOptions::cache_vertex). The idea is the one
+// vertex, so that later paths can end there (QualityOptions::cache). The idea is the one
 // of path-space filtering and hashed radiance caches (Binder et al. 2019; NVIDIA's SHaRC): light
 // deep in a path is smooth, so the noise of its random walk buys little, and a mean over nearby
 // walks replaces it for the cost of a lookup. Biased: a cell averages over its extent. There are

@@ -18,6 +18,18 @@ enum class SamplerKind : uint8_t {
                // (the default)
 };
 
+// Biased: a path that reaches vertex `vertex` (1 = the second hit) on a Lambertian surface ends
+// there into the radiance cache (render/radiance_cache.h) once its cell holds min_samples
+// records; a share `train` of those paths goes on and trains the cache with what it finds beyond
+// that vertex, as do all paths whose cell is not yet ready.
+struct RadianceCacheOptions {
+  int vertex = 0;          // 0 = off
+  float cell = 1.0f / 16;  // the coarsest cells' side, as a share of the scene's diagonal
+  int levels = 2;          // levels of cells, each half the side of the one before
+  float train = 0.1f;
+  int min_samples = 4;  // records in a coarsest cell (4x that in one a level finer)
+};
+
 // The equal-time quality switches (docs/quality.md). Unbiased ones change speed only; the
 // biased ones (clamp, regularize, lowres_sky, denoise) must be off for ground-truth renders. The
 // defaults are what the ablation in docs/quality.md measured best at equal time (RMSE against
@@ -46,19 +58,11 @@ struct QualityOptions {
   // Biased: what a frame shows is filtered by the edge-avoiding denoiser (render/denoiser.h);
   // the film itself keeps accumulating the unbiased estimate.
   bool denoise = false;
-  // Biased: a path that reaches vertex cache_vertex (1 = the second hit) on a Lambertian surface
-  // ends there into the radiance cache (render/radiance_cache.h) once its cell holds
-  // cache_min_samples records; a share cache_train of those paths goes on and trains the cache
-  // with what it finds beyond that vertex, as do all paths whose cell is not yet ready. 0 = off.
-  int cache_vertex = 0;
-  float cache_cell = 1.0f / 16;  // the coarsest cells' side, as a share of the scene's diagonal
-  int cache_levels = 2;          // levels of cells, each half the side of the one before
-  float cache_train = 0.1f;
-  int cache_min_samples = 4;  // records in a coarsest cell (4x that in one a level finer)
+  RadianceCacheOptions cache;  // biased when on
 
   bool biased() const {
     return lowres_sky || regularize || clamp > 0 || clamp_relative > 0 || denoise ||
-           cache_vertex > 0;
+           cache.vertex > 0;
   }
 
   // Every technique off: tiles, 12-byte sky texels, per-type materials, PCG numbers, uniform
@@ -77,7 +81,7 @@ struct QualityOptions {
     QualityOptions o = *this;
     o.lowres_sky = o.regularize = o.denoise = false;
     o.clamp = o.clamp_relative = 0;
-    o.cache_vertex = 0;
+    o.cache.vertex = 0;
     return o;
   }
 };

@@ -107,9 +107,9 @@ TileRenderer::TileRenderer(const Scene& scene, const Accel& accel, const CameraD
   const uint32_t width = static_cast<uint32_t>(std::max(1, settings.width));
   wave_pixels_.reserve(order.size());
   for (uint32_t p : order) wave_pixels_.push_back({p % width, p / width});
-  const QualityOptions& q = settings.quality;
-  if (q.cache_vertex > 0 && q.cache_vertex < settings.max_bounces) {
-    cache_ = std::make_unique<RadianceCache>(scene.bounds(), q.cache_cell, q.cache_levels);
+  const RadianceCacheOptions& c = settings.quality.cache;
+  if (c.vertex > 0 && c.vertex < settings.max_bounces) {
+    cache_ = std::make_unique<RadianceCache>(scene.bounds(), c.cell, c.levels);
     integrator_.use_radiance_cache(cache_.get());
   }
 }

@@ -112,7 +112,7 @@ class TileRenderer {
   const Sampler& prototype_;
   struct WavePool;
   std::unique_ptr<WavePool> wave_pool_;  // per-thread wavefront buffers, kept between passes
-  // QualityOptions::cache_vertex: read by the paths of a pass, trained between passes with the
+  // QualityOptions::cache: read by the paths of a pass, trained between passes with the
   // records its training paths left in the wave buffers.
   std::unique_ptr<RadianceCache> cache_;
   void train_cache() const;

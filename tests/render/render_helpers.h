@@ -33,4 +33,23 @@ inline Image render_image(const Scene& scene, const RenderSettings& settings, ui
   return render_image(scene, settings, PcgSampler(settings.seed), spp, stats);
 }
 
+// `passes` passes of one sample per pixel each, as `render` takes them (the radiance cache
+// learns between passes), with the PCG sampler seeded from the settings; the cache's cell count
+// goes to *cache_cells (0 without a cache) when asked.
+inline Image render_in_passes(const Scene& scene, const RenderSettings& settings, uint32_t passes,
+                              size_t* cache_cells = nullptr) {
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  const PcgSampler sampler(settings.seed);
+  TileRenderer renderer(scene, accel, scene.cameras.at(0), settings, sampler);
+  Film film(settings.width, settings.height);
+  for (uint32_t i = 0; i < passes; ++i) renderer.render_pass(film, i, 1);
+  if (cache_cells) {
+    const RadianceCache* cache = renderer.integrator().radiance_cache();
+    *cache_cells = cache ? cache->cells() : 0;
+  }
+  return film.resolve();
+}
+
 }  // namespace tuneray::testing

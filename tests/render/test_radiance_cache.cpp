@@ -177,38 +177,24 @@ TEST(RadianceCache, EndingPathsInTheCacheKeepsTheImage) {
   // means, and with them the image's, far noisier than the test needs.
   const BBox box = scene.bounds();
   scene.point_lights = {{box.center() + Vec3f(0, 0.3f * box.extent().y, 0), Color(1.0f)}};
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
   RenderSettings s;
   s.width = 40;
   s.height = 30;
   s.max_bounces = 8;
   s.quality.adaptive = false;
+  s.quality.cache.cell = 1.0f / 16;
+  s.quality.cache.levels = 1;
+  // One sample per pass: the cache learns between passes.
   constexpr uint32_t kPasses = 256;
   auto mean_of = [&](int cache_vertex, uint64_t seed, size_t* cells) {
     s.seed = seed;
-    s.quality.cache_vertex = cache_vertex;
-    s.quality.cache_cell = 1.0f / 16;
-    s.quality.cache_levels = 1;
-    const PcgSampler sampler(seed);
-    TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
-    Film film(s.width, s.height);
-    // One sample per pass: the cache learns between passes.
-    for (uint32_t i = 0; i < kPasses; ++i) renderer.render_pass(film, i, 1);
-    if (cells)
-      *cells = renderer.integrator().radiance_cache()
-                   ? renderer.integrator().radiance_cache()->cells()
-                   : 0;
-    const Image img = film.resolve();
-    double sum[3] = {0, 0, 0};
-    for (size_t i = 0; i < img.pixel_count(); ++i) {
-      sum[0] += img.data()[i].x;
-      sum[1] += img.data()[i].y;
-      sum[2] += img.data()[i].z;
-    }
-    for (double& v : sum) v /= static_cast<double>(img.pixel_count());
-    return std::array<double, 3>{sum[0], sum[1], sum[2]};
+    s.quality.cache.vertex = cache_vertex;
+    const Image img = testing::render_in_passes(scene, s, kPasses, cells);
+    std::array<double, 3> mean = {0, 0, 0};
+    for (size_t i = 0; i < img.pixel_count(); ++i)
+      for (int c = 0; c < 3; ++c) mean[c] += img.data()[i][c];
+    for (double& v : mean) v /= static_cast<double>(img.pixel_count());
+    return mean;
   };
   size_t cells = 0;
   const auto plain = mean_of(0, 11, nullptr);
@@ -227,25 +213,20 @@ TEST(RadianceCache, EndingPathsInTheCacheKeepsTheImage) {
 // same image bit for bit, as they do without the cache.
 TEST(RadianceCache, SchedulersGiveTheSameImageWithTheCache) {
   const Scene scene = load_scene("cornell");
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
   RenderSettings s;
   s.width = 32;
   s.height = 24;
   s.max_bounces = 6;
   s.seed = 3;
   s.quality.adaptive = false;
-  s.quality.cache_vertex = 1;
+  s.quality.cache.vertex = 1;
   s.quality.batch_size = 64;  // many waves per pass, spread over the threads
   auto render = [&](bool wavefront) {
     s.quality.wavefront = wavefront;
-    const PcgSampler sampler(s.seed);
-    TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
-    Film film(s.width, s.height);
-    for (uint32_t i = 0; i < 24; ++i) renderer.render_pass(film, i, 1);
-    EXPECT_GT(renderer.integrator().radiance_cache()->cells(), 0u);
-    return film.resolve();
+    size_t cells = 0;
+    const Image image = testing::render_in_passes(scene, s, 24, &cells);
+    EXPECT_GT(cells, 0u);
+    return image;
   };
   const Image wave = render(true), tiles = render(false);
   ASSERT_EQ(wave.pixel_count(), tiles.pixel_count());
