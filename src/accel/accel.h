@@ -58,7 +58,8 @@ class Accel {
   // (Re)builds over `geometry`. Throws BuildError on a refused build.
   virtual BuildStats build(const GeometryView& geometry) = 0;
 
-  // Closest hit in [ray.tnear, ray.tfar]. Returns hit.valid().
+  // Closest hit in [ray.tnear, ray.tfar]. Returns hit.valid(). A negative or NaN tnear reads
+  // as 0 (Embree requires tnear >= 0; both backends clamp it, in every entry point).
   virtual bool intersect(const Ray& ray, Hit& hit) const = 0;
   // Any hit in [ray.tnear, ray.tfar] (shadow rays).
   virtual bool occluded(const Ray& ray) const = 0;

@@ -39,6 +39,12 @@ template <class T>
 inline T* ref_ptr(NodeRef ref) {
   return reinterpret_cast<T*>(ref & ~kRefLowBits);
 }
+// An inner node's reference is its address (make_node_ref), so the traversal's chain from one
+// node to the next needs no masking step.
+template <class T>
+inline T* inner_ptr(NodeRef ref) {
+  return reinterpret_cast<T*>(ref);
+}
 // `code` is the pack count of a fast leaf (at most kLeafCodeMax), 0 for a compact leaf.
 inline NodeRef make_leaf_ref(const void* p, uint32_t code = 0) {
   return reinterpret_cast<uintptr_t>(p) | (NodeRef{code} << kLeafCodeShift) | kLeafTag;

@@ -69,7 +69,7 @@ RayMask occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, Ray
     RayMask rays = e.rays & ~blocked;
     if (!rays) continue;
     while (!is_leaf(cur)) {
-      const auto& node = *ref_ptr<typename Planes::Node>(cur);
+      const auto& node = *inner_ptr<typename Planes::Node>(cur);
       V nears[3], fars[3];
       Planes::load(node, near_row, far_row, nears, fars);
       ChildRays entered;

@@ -31,7 +31,10 @@ const char* quality_name(RTCBuildQuality q) {
 inline void store_rtc(const Ray& r, RTCRay& out) {
   static_assert(sizeof(Ray) == 32 && offsetof(Ray, tfar) == 28);
   static_assert(offsetof(RTCRay, time) == 28 && offsetof(RTCRay, flags) == 44);
-  const __m256 row = _mm256_loadu_ps(reinterpret_cast<const float*>(&r));
+  __m256 row = _mm256_loadu_ps(reinterpret_cast<const float*>(&r));
+  // Embree asks tnear >= 0; a negative or NaN one reads as 0, as in the tuned BVH (max_ps
+  // returns its second operand for a NaN).
+  row = _mm256_blend_ps(row, _mm256_max_ps(row, _mm256_setzero_ps()), 0x08);
   _mm256_storeu_ps(&out.org_x, _mm256_blend_ps(row, _mm256_setzero_ps(), 0x80));
   // tfar, then mask (all bits), id and flags (0).
   const __m128i tail =
@@ -351,6 +354,7 @@ void EmbreeNativeAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit
       for (size_t k = 0; k < 8; ++k)
         r[k] = k < count ? _mm256_loadu_ps(src + 8 * k) : _mm256_setzero_ps();
       transpose8(r);  // planes: org x, y, z, tnear, dir x, y, z, tfar
+      r[3] = _mm256_max_ps(r[3], _mm256_setzero_ps());  // tnear >= 0, as in store_rtc
       float* const dst[8] = {packet.ray.org_x, packet.ray.org_y, packet.ray.org_z, packet.ray.tnear,
                              packet.ray.dir_x, packet.ray.dir_y, packet.ray.dir_z, packet.ray.tfar};
       for (int k = 0; k < 8; ++k) _mm256_store_ps(dst[k], r[k]);

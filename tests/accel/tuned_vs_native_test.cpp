@@ -2,6 +2,10 @@
 // (1e-5 relative) and triangle (except true ties) for closest-hit and shadow rays.
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <string>
+#include <vector>
+
 #include "accel/embree_native.h"
 #include "accel/tuned_bvh.h"
 #include "compare_backends.h"
@@ -103,6 +107,52 @@ TEST(TunedBvh, SingleTriangleIsARootLeaf) {
     EXPECT_FALSE(tuned.occluded(Ray{Vec3f(0), 0, Vec3f(0, 0, 1), 1.9f}));
     EXPECT_TRUE(tuned.occluded(Ray{Vec3f(0), 0, Vec3f(0, 0, 1), 2.1f}));
   }
+}
+
+// The tuned box test orders floats by their bits, which is exact only from a non-negative start,
+// so a ray's start is clamped to 0 (Embree asks tnear >= 0, and the native backend clamps too): a
+// negative or NaN tnear finds what a ray from its origin finds, never the triangle behind the
+// origin, in single rays and batches.
+void expect_starts_count_from_the_origin(const Accel& accel, const std::string& name) {
+  for (float tnear : {-5.0f, -0.0f, std::numeric_limits<float>::quiet_NaN()}) {
+    SCOPED_TRACE(name + ", tnear " + std::to_string(tnear));
+    Hit h;
+    ASSERT_TRUE(accel.intersect(Ray{Vec3f(0), tnear, Vec3f(0, 0, 1), kInf}, h));
+    EXPECT_FLOAT_EQ(h.t, 2.0f);
+    EXPECT_EQ(h.prim, 1u);
+    EXPECT_FALSE(accel.occluded(Ray{Vec3f(0, 0, 1), tnear, Vec3f(0, 0, -1), 2.9f}));
+    EXPECT_TRUE(accel.occluded(Ray{Vec3f(0, 0, 1), tnear, Vec3f(0, 0, -1), 3.1f}));
+    // A coherent batch of one octant goes through the packet kernels.
+    std::vector<Ray> rays;
+    for (int i = 0; i < 64; ++i)
+      rays.push_back(
+          Ray{Vec3f(0.01f * static_cast<float>(i % 8), 0.01f * static_cast<float>(i / 8), 0), tnear,
+              Vec3f(0.001f, 0.001f, 1), kInf});
+    for (RayCoherence coherence : {RayCoherence::kCoherent, RayCoherence::kIncoherent}) {
+      std::vector<Hit> hits(rays.size());
+      accel.intersect_batch(rays, hits, coherence);
+      for (const Hit& b : hits) EXPECT_EQ(b.prim, 1u);
+    }
+    // Shadow rays of the same batch towards the triangle behind them, which they must not see.
+    for (Ray& r : rays) r.tfar = 1.9f;
+    std::vector<uint8_t> blocked(rays.size(), 1);
+    accel.occluded_batch(rays, blocked);
+    for (uint8_t b : blocked) EXPECT_EQ(b, 0);
+  }
+}
+
+TEST(TunedBvh, NegativeOrNanStartsCountFromTheOrigin) {
+  Mesh mesh;
+  mesh.add(Vec3f(-1, -1, -2), Vec3f(1, -1, -2), Vec3f(0, 1, -2));  // behind the rays
+  mesh.add(Vec3f(-1, -1, 2), Vec3f(1, -1, 2), Vec3f(0, 1, 2));
+  for (const char* text : {"branching=2", "branching=8", "branching=8,compact=1", "robust=1"}) {
+    TunedBvhAccel tuned(parse_bvh_config(text));
+    tuned.build(mesh.view());
+    expect_starts_count_from_the_origin(tuned, text);
+  }
+  EmbreeNativeAccel native;
+  native.build(mesh.view());
+  expect_starts_count_from_the_origin(native, "native");
 }
 
 }  // namespace
