@@ -70,7 +70,7 @@ inline int box_test(const typename L::V (&nears)[3], const typename L::V (&fars)
     L::store(dist, tmin);
     return L::movemask(L::le(tmin, tmax));
   } else {
-    // r.tnear >= +0, so the integer order is exact (Lanes8).
+    // r.tnear >= +0 (make_traversal_ray), so the integer order is exact (Lanes8::max_bits).
     const V tmin = L::max_bits(L::max_bits(tn[0], tn[1]), L::max_bits(tn[2], L::set1(r.tnear)));
     const V tmax = L::min_bits(L::min_bits(tf[0], tf[1]), L::min_bits(tf[2], L::set1(tfar)));
     L::store(dist, tmin);
@@ -360,7 +360,7 @@ bool traverse_from(const TraversalContext& ctx, NodeRef start, const TraversalRa
           const float d0 = dist[i0], d1 = dist[i1];
           // Without a branch: which child is nearer is close to a coin toss for scattered rays,
           // and a mispredicted branch costs more than the select's few cycles on the chain
-          // (batch_replay, forty-first session: bounce rays 1-2 % faster on the bunny and
+          // (batch_replay, thirty-ninth session: bounce rays 1-2 % faster on the bunny and
           // lost-empire, level on bmw-m6 and conference). Ties keep slot order.
           const NodeRef swap = NodeRef{0} - static_cast<NodeRef>(d1 < d0);
           const NodeRef diff = (c0 ^ c1) & swap;

@@ -122,7 +122,7 @@ void expect_starts_count_from_the_origin(const Accel& accel, const std::string& 
     EXPECT_EQ(h.prim, 1u);
     EXPECT_FALSE(accel.occluded(Ray{Vec3f(0, 0, 1), tnear, Vec3f(0, 0, -1), 2.9f}));
     EXPECT_TRUE(accel.occluded(Ray{Vec3f(0, 0, 1), tnear, Vec3f(0, 0, -1), 3.1f}));
-    // A coherent batch of one octant goes through the packet kernels.
+    // A batch of one octant: coherent, it goes through the packet kernels where the tree has them.
     std::vector<Ray> rays;
     for (int i = 0; i < 64; ++i)
       rays.push_back(
