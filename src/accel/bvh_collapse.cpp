@@ -32,8 +32,7 @@ class Collapser {
     // the buffer; pages past the nodes written are never touched.
     const size_t bytes = max_inner_nodes * whole_lines(sizeof(Wide));
     using Buffer = std::unique_ptr<char, decltype(&std::free)>;
-    Buffer buffer(static_cast<char*>(std::aligned_alloc(kCacheLine, bytes)), &std::free);
-    if (!buffer) throw std::bad_alloc();
+    Buffer buffer(static_cast<char*>(tree_alloc(bytes)), &std::free);
     Collapser c;
     c.base_ = buffer.get();
     c.capacity_ = max_inner_nodes;
@@ -42,8 +41,7 @@ class Collapser {
     Buffer leaves(nullptr, &std::free);
     if (!kCompact && merge_limit > 1) {
       const size_t leaf_capacity = whole_lines(leaf_lines_below(tree.root()));
-      leaves.reset(static_cast<char*>(std::aligned_alloc(kCacheLine, leaf_capacity)));
-      if (!leaves) throw std::bad_alloc();
+      leaves.reset(static_cast<char*>(tree_alloc(leaf_capacity)));
       c.merge_limit_ = merge_limit;
       c.flatten_limit_ = merge_limit;
       c.pack_cost_ = pack_cost;

@@ -1,8 +1,27 @@
 #include "accel/bvh_tree.h"
 
+#include <sys/mman.h>
+
 #include <cstdlib>
+#include <new>
 
 namespace tuneray::bvh {
+
+void* tree_alloc(size_t bytes) {
+  constexpr size_t kHugePage = size_t{2} << 20;
+  const size_t lines = (bytes + kCacheLine - 1) / kCacheLine * kCacheLine;
+  void* p = nullptr;
+  if (lines >= kHugePage) {
+    const size_t whole = (lines + kHugePage - 1) / kHugePage * kHugePage;
+    p = std::aligned_alloc(kHugePage, whole);
+    // Only advice: where the kernel has no transparent huge pages the memory stays as it is.
+    if (p) madvise(p, whole, MADV_HUGEPAGE);
+  } else {
+    p = std::aligned_alloc(kCacheLine, lines == 0 ? kCacheLine : lines);
+  }
+  if (!p) throw std::bad_alloc();
+  return p;
+}
 
 void Tree::adopt_embree(RTCBVH handle, NodeRef root, TreeShape shape) {
   reset();

@@ -16,6 +16,13 @@ struct TreeShape {
   bool robust = false;
 };
 
+// Memory for nodes or leaves that a Tree adopts (released with std::free), cache-line aligned.
+// A buffer of 2 MiB or more is aligned to 2 MiB, rounded up to whole 2 MiB and advised as
+// transparent huge pages, as Embree advises its own BVH memory: a tree of tens of MiB spans
+// thousands of 4 KiB pages, far beyond the TLB, and in a frame the shading evicts the tree's
+// translations as well as its lines. Throws std::bad_alloc.
+void* tree_alloc(size_t bytes);
+
 class Tree {
  public:
   Tree() = default;
@@ -25,15 +32,15 @@ class Tree {
 
   // Takes ownership of an Embree BVH handle whose allocator holds the nodes of `root`.
   void adopt_embree(RTCBVH handle, NodeRef root, TreeShape shape);
-  // Takes ownership of a buffer from aligned_alloc holding the nodes of `root`; releases the
+  // Takes ownership of a buffer from tree_alloc holding the nodes of `root`; releases the
   // Embree handle (the nodes it held are no longer referenced).
   void adopt_buffer(void* buffer, size_t bytes, NodeRef root);
-  // Takes ownership of a buffer from aligned_alloc holding the inner nodes of `root`, of shape
+  // Takes ownership of a buffer from tree_alloc holding the inner nodes of `root`, of shape
   // `shape`, whose leaves are still in the Embree handle's allocator (kept), but for those in
-  // `leaves` (from aligned_alloc too, may be null): leaves the collapse made by merging others.
+  // `leaves` (from tree_alloc too, may be null): leaves the collapse made by merging others.
   void adopt_collapsed(void* nodes, size_t bytes, NodeRef root, TreeShape shape,
                        void* leaves = nullptr);
-  // Takes ownership of a buffer from aligned_alloc holding the inner nodes of `root`, whose
+  // Takes ownership of a buffer from tree_alloc holding the inner nodes of `root`, whose
   // leaves stay where they are (the Embree handle, kept); replaces the inner nodes held so far.
   void adopt_inner_nodes(void* nodes, size_t bytes, NodeRef root);
   void reset();

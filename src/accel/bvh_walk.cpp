@@ -115,8 +115,7 @@ struct Walker {
     NodeRef root = tree.root();
     if (root == kEmptyRef || tree.relaid_out()) return;
     size_t bytes = total_bytes(root);
-    char* buffer = static_cast<char*>(std::aligned_alloc(kCacheLine, whole_lines(bytes)));
-    if (!buffer) throw std::bad_alloc();
+    char* buffer = static_cast<char*>(tree_alloc(bytes));
     size_t offset = 0;
     NodeRef new_root = copy(root, buffer, offset);
     tree.adopt_buffer(buffer, bytes, new_root);
