@@ -1,21 +1,12 @@
 // 1,000 rebuilds with changing configurations: resident memory stays flat (no leak).
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-#include <fstream>
-
 #include "accel/tuned_bvh.h"
+#include "resident_memory.h"
 #include "test_geometry.h"
 
 namespace tuneray::test {
 namespace {
-
-size_t resident_bytes() {
-  std::ifstream statm("/proc/self/statm");
-  size_t pages = 0, resident = 0;
-  statm >> pages >> resident;
-  return resident * static_cast<size_t>(sysconf(_SC_PAGESIZE));
-}
 
 TEST(RebuildMemory, ThousandRebuildsKeepRssFlat) {
 #if defined(__SANITIZE_ADDRESS__)
