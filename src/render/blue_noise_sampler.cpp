@@ -16,11 +16,11 @@ BlueNoiseSampler::BlueNoiseSampler(uint64_t seed, const BlueNoiseTables& tables)
 
 void BlueNoiseSampler::start_pixel_sample(uint32_t x, uint32_t y, uint32_t index) {
   start_tables(x, y, index);
-  fallback_.start_pixel_sample(x, y, index);
+  if (!in_table_) seeded_fallback();
 }
 
 float BlueNoiseSampler::next1() {
-  if (!in_table_ || dim_ >= kDims) return fallback_.next1();
+  if (!in_table_ || dim_ >= kDims) return seeded_fallback().next1();
   return bits_to_unit_float(BlueNoiseTables::value_bits(*tables_, *keys_, index_, dim_++));
 }
 

@@ -66,13 +66,13 @@ class SamplerBankOf final : public SamplerBank {
     if (samplers_.size() < first + ids.size()) samplers_.resize(first + ids.size(), prototype_);
     size_t i = 0;
     // Samplers that read tables ask for a start's lines this many ids ahead.
-    prefetch_starts(ids, 0, kPrefetchAhead);
+    prefetch_starts(ids, 0, kStartPrefetchAhead);
     // Samplers that can seed four at once (their seeding is a chain of 64-bit multiplies).
     if constexpr (requires(S * s[4], const PixelSampleId* id, float* const* out, size_t at) {
                     S::start4(s, id, out, at);
                   }) {
       for (; i + 4 <= ids.size(); i += 4) {
-        prefetch_starts(ids, i + kPrefetchAhead, 4);
+        prefetch_starts(ids, i + kStartPrefetchAhead, 4);
         S* s[4];
         for (int j = 0; j < 4; ++j) s[j] = &samplers_[first + i + j];
         S::start4(s, &ids[i], first4, i);
@@ -123,6 +123,7 @@ class SamplerBankOf final : public SamplerBank {
 
  private:
   static constexpr size_t kPrefetchAhead = 8;
+  static constexpr size_t kStartPrefetchAhead = 32;
   // The lines a table-reading sampler's next draw or start needs (none for the others).
   [[gnu::always_inline]] void prefetch_next(uint32_t slot) const {
     if constexpr (requires(const S& s) { s.prefetch_next(); }) samplers_[slot].prefetch_next();
