@@ -54,4 +54,9 @@ IntersectBatchKernel select_coherent_batch_kernel(const TreeShape& shape) {
                                             : avx2::coherent_batch_kernel(shape);
 }
 
+IntersectPlanesKernel select_coherent_planes_kernel(const TreeShape& shape) {
+  return kernel_isa() == KernelIsa::kAvx512 ? avx512::coherent_planes_kernel(shape)
+                                            : avx2::coherent_planes_kernel(shape);
+}
+
 }  // namespace tuneray::bvh

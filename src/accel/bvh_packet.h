@@ -19,6 +19,7 @@
 #include <cstddef>
 
 #include "accel/bvh_traverse.h"
+#include "accel/ray_planes.h"
 
 namespace tuneray::bvh {
 
@@ -30,5 +31,11 @@ using IntersectBatchKernel = void (*)(const TraversalContext&, const Kernels& si
 // The stream kernel for a tree of this shape, or nullptr where there is none (compact or robust
 // layouts, and width 2, whose nodes are too narrow to amortise a packet's box tests).
 IntersectBatchKernel select_coherent_batch_kernel(const TreeShape& shape);
+
+// The same for rays as planes (the wavefront's camera rays), each packet read from the planes:
+// no copy into records and back into rows. The same hits as the batch kernel's, bit for bit.
+using IntersectPlanesKernel = void (*)(const TraversalContext&, const Kernels& single,
+                                       const RayPlanes& rays, Hit* hits);
+IntersectPlanesKernel select_coherent_planes_kernel(const TreeShape& shape);
 
 }  // namespace tuneray::bvh

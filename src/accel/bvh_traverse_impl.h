@@ -7,8 +7,10 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <type_traits>
 #include <utility>
@@ -17,6 +19,7 @@
 #include "accel/bvh_layout.h"
 #include "accel/bvh_traverse.h"
 #include "accel/bvh_triangle.h"
+#include "accel/ray_planes.h"
 #include "scene/scene.h"
 
 namespace tuneray::bvh::detail {
@@ -434,6 +437,12 @@ inline int ray_octant(const Ray& ray) {
   static_assert(offsetof(Ray, dir) + 4 * sizeof(float) <= sizeof(Ray), "dir and one float");
   return _mm_movemask_ps(_mm_loadu_ps(&ray.dir.x)) & 7;
 }
+// ray_octant of ray i of planes: the same sign bits.
+inline int plane_octant(const RayPlanes& rays, size_t i) {
+  return static_cast<int>((std::bit_cast<uint32_t>(rays.dir[0][i]) >> 31) |
+                          (std::bit_cast<uint32_t>(rays.dir[1][i]) >> 31) << 1 |
+                          (std::bit_cast<uint32_t>(rays.dir[2][i]) >> 31) << 2);
+}
 
 // A group's near planes come from its octant, never from one of its rays: a ray with a NaN
 // direction (which enters no box) must not hand its rows to the others.
@@ -474,29 +483,6 @@ void for_each_octant_group(const Ray* rays, size_t count, int size, int min_size
         group(&order[first], n, o);
       }
     }
-  }
-}
-
-// For batches already in coherent order (camera rays of neighbouring pixels): calls
-// `group(first, n, octant)` for each run of up to `size` consecutive rays of one octant, or
-// `single(i)` for each ray of a run shorter than `min_size`. Unlike for_each_octant_group it
-// neither sorts nor gathers: a camera's rays change octant only where the view crosses an axis.
-template <class GroupFn, class SingleFn>
-void for_each_octant_run(const Ray* rays, size_t count, int size, int min_size, GroupFn group,
-                         SingleFn single) {
-  size_t first = 0;
-  while (first < count) {
-    const int octant = ray_octant(rays[first]);
-    size_t end = first + 1;
-    const size_t limit = std::min(count, first + static_cast<size_t>(size));
-    while (end < limit && ray_octant(rays[end]) == octant) ++end;
-    const int n = static_cast<int>(end - first);
-    if (n < min_size) {
-      for (size_t i = first; i < end; ++i) single(i);
-    } else {
-      group(first, n, octant);
-    }
-    first = end;
   }
 }
 

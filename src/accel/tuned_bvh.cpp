@@ -44,6 +44,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
     context_ = {};
     kernels_ = {};
     coherent_batch_ = nullptr;
+    coherent_planes_ = nullptr;
     occluded_batch_ = nullptr;
     tree_stats_ = {};
     throw;
@@ -55,6 +56,7 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   context_ = {tree_->root(), geometry.positions, geometry.triangles};
   kernels_ = bvh::select_kernels(tree_->shape());
   coherent_batch_ = bvh::select_coherent_batch_kernel(tree_->shape());
+  coherent_planes_ = bvh::select_coherent_planes_kernel(tree_->shape());
   occluded_batch_ = bvh::select_occluded_batch_kernel(tree_->shape());
 
   tree_stats_ = bvh::measure_tree(*tree_, config_.trav_cost, config_.int_cost);
@@ -92,6 +94,7 @@ void TunedBvhAccel::swap_tree(TunedBvhAccel& other) noexcept {
   swap(context_, other.context_);
   swap(kernels_, other.kernels_);
   swap(coherent_batch_, other.coherent_batch_);
+  swap(coherent_planes_, other.coherent_planes_);
   swap(occluded_batch_, other.occluded_batch_);
   swap(tree_stats_, other.tree_stats_);
 }
@@ -123,8 +126,8 @@ void TunedBvhAccel::intersect_batch(std::span<const Ray> rays, std::span<Hit> hi
 
 void TunedBvhAccel::intersect_planes(const RayPlanes& rays, std::span<Hit> hits,
                                      RayCoherence coherence) const {
-  if (coherence == RayCoherence::kCoherent && coherent_batch_) {
-    Accel::intersect_planes(rays, hits, coherence);  // the packet kernels read records
+  if (coherence == RayCoherence::kCoherent && coherent_planes_) {
+    coherent_planes_(context_, kernels_, rays, hits.data());
     return;
   }
   // One ray at a time, each read from the planes: no pass that copies the batch into records.

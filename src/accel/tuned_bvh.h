@@ -61,8 +61,9 @@ class TunedBvhAccel final : public Accel {
   std::unique_ptr<bvh::Tree> tree_;
   bvh::TraversalContext context_;
   bvh::Kernels kernels_;
-  bvh::IntersectBatchKernel coherent_batch_ = nullptr;  // packets; none for some layouts
-  bvh::OccludedBatchKernel occluded_batch_ = nullptr;   // streams; none for some layouts
+  bvh::IntersectBatchKernel coherent_batch_ = nullptr;    // packets; none for some layouts
+  bvh::IntersectPlanesKernel coherent_planes_ = nullptr;  // the same, from planes
+  bvh::OccludedBatchKernel occluded_batch_ = nullptr;     // streams; none for some layouts
   bvh::TreeStats tree_stats_;
 };
 
