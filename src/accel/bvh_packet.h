@@ -1,11 +1,12 @@
 // Coherent batches (camera rays) of the tuned BVH as streams: up to 64 consecutive rays that
-// share a direction octant traverse the tree together, as 8 packets of 8. The batch is taken in
-// its own order, in runs of one octant (no sort: a camera's rays change octant only where the view
-// crosses an axis, and the wavefront scheduler hands them over in 8×8 pixel blocks), and a full
-// packet's 8 rays are read as rows and transposed. At each node a frustum of the
+// share a direction octant traverse the tree together, as 8 packets of 8 (AVX2) or 4 packets of
+// 16 (AVX-512). The batch is taken in its own order, in runs of one octant (no sort: a camera's
+// rays change octant only where the view crosses an axis, and the wavefront scheduler hands them
+// over in 8×8 pixel blocks); a packet is read from the wavefront's planes as they are, or from
+// records, 8 rows at a time, transposed. At each node a frustum of the
 // stream's rays (per axis the range of their inverse directions and origin terms, padded far
 // above the roundings) culls the children no ray can enter, for all of them at once; each child
-// it keeps is tested against each packet's rays in one AVX2 pass, and the stream goes on nearest
+// it keeps is tested against each packet's rays in one SIMD pass, and the stream goes on nearest
 // child first. Rays that thin out go on one by one in the single-ray traversal (hybrid
 // traversal, as Embree's coherent streams do). Leaves reached by several rays of a packet are
 // tested with SIMD over the rays, each lane doing the operations of the single-ray test in the
