@@ -98,6 +98,33 @@ TEST_P(TunedPackets, PlanesFindTheRecordsHits) {
   }
 }
 
+// A direction component of -0 puts a ray in the negative octant of its axis, and +0 in the
+// positive one, whether the batch comes as records or as planes (whose octants are read from the
+// planes' sign bits): axis-parallel rays in runs of +0 and -0 components (a run of each length
+// kind: partial packets, full streams, longer runs) find the records' and the single rays' hits.
+TEST_P(TunedPackets, SignedZeroDirectionsTakeTheirOctantFromPlanesAsFromRecords) {
+  const Mesh mesh = make_soup(4000, 11, 0.08f);
+  std::vector<Ray> rays;
+  const int run_lengths[] = {16, 20, 64, 13, 70, 33, 17, 40};
+  int k = 0;
+  for (int b = 0; b < 8; ++b) {
+    const float zx = (b & 1) ? -0.0f : 0.0f, zy = (b & 2) ? -0.0f : 0.0f;
+    for (int i = 0; i < run_lengths[b]; ++i, ++k) {
+      const Vec3f org(0.1f + 0.8f * static_cast<float>(k % 23) / 23.0f,
+                      0.1f + 0.8f * static_cast<float>(k / 23) / 12.0f, -1.5f);
+      rays.push_back(Ray{org, 0, Vec3f(zx, zy, 1.0f), kInf});
+    }
+  }
+  for (const char* text : kBatchKernelConfigs) {
+    SCOPED_TRACE(text);
+    TunedBvhAccel tuned(parse_bvh_config(text));
+    tuned.build(mesh.view());
+    expect_plane_hits_are_batch_hits(tuned, rays, RayCoherence::kCoherent);
+    const size_t hits = expect_batch_hits_are_single_ray_hits(tuned, rays, RayCoherence::kCoherent);
+    EXPECT_GT(hits, rays.size() / 4);
+  }
+}
+
 // Coherent batches are cut into runs of consecutive rays of one octant: runs of every length
 // (single rays below 4, partial packets, full streams and runs longer than a stream) and octant
 // changes at every position must leave each ray its single-ray hit.
