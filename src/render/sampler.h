@@ -123,6 +123,8 @@ class SamplerBankOf final : public SamplerBank {
 
  private:
   static constexpr size_t kPrefetchAhead = 8;
+  // A start is a few dozen cycles once its fallback is seeded lazily, shorter than a table
+  // line's trip from L3, so its lines are asked for further ahead than a draw's.
   static constexpr size_t kStartPrefetchAhead = 32;
   // The lines a table-reading sampler's next draw or start needs (none for the others).
   [[gnu::always_inline]] void prefetch_next(uint32_t slot) const {

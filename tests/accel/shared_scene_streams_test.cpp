@@ -13,6 +13,7 @@
 
 #include "accel/tuned_bvh.h"
 #include "batch_check.h"
+#include "math/vec.h"
 #include "scene/load.h"
 
 namespace tuneray::test {
@@ -31,7 +32,7 @@ std::vector<Ray> block_ordered_camera_rays(const View& v, int width, int height,
   const Vec3f forward = normalize(v.target - v.eye);
   const Vec3f right = normalize(cross(forward, Vec3f(0, 1, 0)));
   const Vec3f up = cross(right, forward);
-  const float half_width = std::tan(v.fov_degrees * 0.5f * 3.14159265f / 180.0f);
+  const float half_width = std::tan(v.fov_degrees * 0.5f * kPi / 180.0f);
   const float half_height = half_width * static_cast<float>(height) / static_cast<float>(width);
   std::vector<Ray> rays;
   for (int by = 0; by < height; by += 8)
