@@ -13,7 +13,7 @@ namespace tuneray::bvh {
 
 // The stream kernels twice: for AVX2, with 8-ray packets, and for CPUs with AVX-512 (F, VL, BW,
 // DQ), with 16-ray packets in 512-bit vectors and mask registers, as Embree traces 16-ray packets
-// there. The wider packets traced camera rays in 5-25 % less time (docs/bvh.md, fortieth session).
+// there. The wider packets traced camera rays in 1-20 % less time (docs/bvh.md, fortieth session).
 #define TUNERAY_PACKET_LANES 8
 namespace avx2 {
 #include "accel/bvh_packet_kernel.inc"

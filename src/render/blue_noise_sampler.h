@@ -7,7 +7,8 @@
 // sample indices >= 256, where the tables end: those samples are white noise, still unbiased.
 // Inside the tables the fallback is seeded only when a path first draws past them: most paths
 // of an open scene end before (bmw-m6: 88 % of camera rays reach the sky), and the seeding's
-// chain of 64-bit multiplies was 14 % of such a frame.
+// chain of 64-bit multiplies made the start 6.5 % of such a frame's samples at 256 spp (4.9 %
+// seeded lazily).
 #pragma once
 
 #include <immintrin.h>
