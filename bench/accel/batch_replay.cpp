@@ -29,6 +29,10 @@
 // `--native-b PARAMS` replaces the tuned backend by a second native one built with these
 // parameters (e.g. `tri_accel=bvh4.triangle4`): Embree against Embree on the same rays.
 // `--camera N` records the render from the scene's camera N instead of its first.
+// `--path-camera K/N` records it from camera K of the N that `tune --cameras N` places along the
+// scene's first camera path (or the automatic path of a scene without one), so a replay can look
+// at the very views whose frames `tune` measured: on the bunny, the close views (K = 6, 7 of 10)
+// are where native's camera rays win, which the scene's first camera does not show.
 #include <tbb/global_control.h>
 #include <time.h>
 
@@ -54,6 +58,7 @@
 #include "render/film.h"
 #include "render/image_size.h"
 #include "render/tile_renderer.h"
+#include "scene/camera_spline.h"
 #include "scene/load.h"
 
 namespace tuneray {
@@ -204,7 +209,8 @@ int replay_main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: batch_replay SCENE [--scenes-dir D] [--bvh C] [--size WxH] [--spp N] "
                  "[--repeats R] [--only camera|bounce|shadow] [--pollute KiB] [--single 0|1] "
-                 "[--ab-env VAR=VALUE] [--ab-copies N] [--native-b PARAMS] [--camera N]\n");
+                 "[--ab-env VAR=VALUE] [--ab-copies N] [--native-b PARAMS] [--camera N] "
+                 "[--path-camera K/N]\n");
     return argc < 2 ? 2 : 0;
   }
   std::string scene_spec = argv[1], scenes_dir, bvh, ab_env;
@@ -212,6 +218,8 @@ int replay_main(int argc, char** argv) {
   int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0, ab_copies = 1;
   int only = -1;
   long camera = 0;
+  bool camera_given = false;
+  std::optional<std::pair<long, long>> path_camera;  // K of N along the camera path
   if ((argc - 2) % 2 != 0) {
     std::fprintf(stderr, "batch_replay: option %s needs a value\n", argv[argc - 1]);
     return 2;
@@ -232,11 +240,29 @@ int replay_main(int argc, char** argv) {
     } else if (key == "--camera") {
       char* end = nullptr;
       camera = std::strtol(value.c_str(), &end, 10);
+      camera_given = true;
       if (end == value.c_str() || *end != '\0' || camera < 0) {
         std::fprintf(stderr, "batch_replay: --camera takes a camera index, not '%s'\n",
                      value.c_str());
         return 2;
       }
+    } else if (key == "--path-camera") {
+      char* end = nullptr;
+      const long k = std::strtol(value.c_str(), &end, 10);
+      long n = 0;
+      if (end != value.c_str() && *end == '/') {
+        const char* count = end + 1;
+        n = std::strtol(count, &end, 10);
+        if (end == count) n = 0;
+      }
+      if (*end != '\0' || n < 1 || n > 100000 || k < 0 || k >= n) {
+        std::fprintf(stderr,
+                     "batch_replay: --path-camera takes K/N with 0 <= K < N (camera K of N "
+                     "along the camera path), not '%s'\n",
+                     value.c_str());
+        return 2;
+      }
+      path_camera = {k, n};
     } else if (key == "--spp" || key == "--repeats" || key == "--pollute") {
       char* end = nullptr;
       const long n = std::strtol(value.c_str(), &end, 10);
@@ -268,6 +294,10 @@ int replay_main(int argc, char** argv) {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
     }
+  }
+  if (camera_given && path_camera) {
+    std::fprintf(stderr, "batch_replay: give --camera or --path-camera, not both\n");
+    return 2;
   }
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   LoadOptions load;
@@ -309,13 +339,22 @@ int replay_main(int argc, char** argv) {
   settings.width = width;
   settings.height = height;
   std::unique_ptr<Sampler> sampler = make_sampler(settings.quality.sampler, 0);
-  if (static_cast<size_t>(camera) >= scene.cameras.size()) {
-    std::fprintf(stderr, "batch_replay: %s has %zu camera(s); --camera %ld is not one of them\n",
-                 scene_spec.c_str(), scene.cameras.size(), camera);
-    return 2;
+  CameraDesc view;
+  if (path_camera) {
+    view = cameras_along_path(scene, 0, static_cast<int>(path_camera->second))
+               .at(static_cast<size_t>(path_camera->first));
+    std::printf("camera %ld of %ld along the camera path: position (%g, %g, %g), fov %g\n",
+                path_camera->first, path_camera->second, view.position.x, view.position.y,
+                view.position.z, view.vfov_deg);
+  } else {
+    if (static_cast<size_t>(camera) >= scene.cameras.size()) {
+      std::fprintf(stderr, "batch_replay: %s has %zu camera(s); --camera %ld is not one of them\n",
+                   scene_spec.c_str(), scene.cameras.size(), camera);
+      return 2;
+    }
+    view = scene.cameras[static_cast<size_t>(camera)];
   }
-  TileRenderer renderer(scene, recorder, scene.cameras[static_cast<size_t>(camera)], settings,
-                        *sampler);
+  TileRenderer renderer(scene, recorder, view, settings, *sampler);
   Film film(width, height);
   for (int s = 0; s < spp; ++s) renderer.render_pass(film, static_cast<uint32_t>(s), 1);
   size_t rays[kPhases] = {};

@@ -85,4 +85,14 @@ CameraPath automatic_camera_path(const Scene& scene) {
   return path;
 }
 
+std::vector<CameraDesc> cameras_along_path(const Scene& scene, int path_index, int count) {
+  if (path_index < 0 ||
+      (path_index > 0 && path_index >= static_cast<int>(scene.camera_paths.size())))
+    throw std::invalid_argument("bad camera path " + std::to_string(path_index) +
+                                ": the scene has " + std::to_string(scene.camera_paths.size()));
+  const CameraPath path =
+      scene.camera_paths.empty() ? automatic_camera_path(scene) : scene.camera_paths[path_index];
+  return sample_camera_path(path, count);
+}
+
 }  // namespace tuneray

@@ -19,4 +19,9 @@ std::vector<CameraDesc> sample_camera_path(const CameraPath& path, int count);
 // bounding box at varying heights, so the visible geometry changes a lot along it.
 CameraPath automatic_camera_path(const Scene& scene);
 
+// The `count` cameras that `tune` and `eval` measure: sampled along the scene's camera path
+// `path_index`, or along automatic_camera_path for path 0 of a scene that brings none. Throws
+// std::invalid_argument for a path the scene does not have and for count < 1.
+std::vector<CameraDesc> cameras_along_path(const Scene& scene, int path_index, int count);
+
 }  // namespace tuneray

@@ -1,5 +1,6 @@
 #include "tuning/eval_scene.h"
 
+#include "scene/camera_spline.h"
 #include "scene/indicators.h"
 #include "scene/load.h"
 #include "tuning/eval_search.h"
@@ -7,15 +8,13 @@
 
 namespace tuneray {
 
-std::vector<CameraDesc> camera_positions(const Scene& scene, int path_index, int count);
-
 std::unique_ptr<EvalScene> load_eval_scene(const EvalProfile& p, const std::string& spec) {
   LoadOptions load_options;
   load_options.scenes_dir = p.scenes_dir;
   auto s = std::make_unique<EvalScene>();
   s->name = eval_scene_name(spec);
   s->scene = load_scene(spec, load_options);
-  s->cameras = camera_positions(s->scene, 0, p.cameras);
+  s->cameras = cameras_along_path(s->scene, 0, p.cameras);
   const tuner::IndicatorSchema schema = make_indicator_schema();
   SceneIndicators si = compute_scene_indicators(s->scene);
   for (const CameraDesc& c : s->cameras) {

@@ -25,16 +25,6 @@ tuner::PredictorKind parse_predictor(const std::string& text) {
   throw std::invalid_argument("bad predictor '" + text + "': expected nn, rbf or both");
 }
 
-std::vector<CameraDesc> camera_positions(const Scene& scene, int path_index, int count) {
-  if (path_index < 0 ||
-      (path_index > 0 && path_index >= static_cast<int>(scene.camera_paths.size())))
-    throw std::invalid_argument("bad camera path " + std::to_string(path_index) +
-                                ": the scene has " + std::to_string(scene.camera_paths.size()));
-  CameraPath path =
-      scene.camera_paths.empty() ? automatic_camera_path(scene) : scene.camera_paths[path_index];
-  return sample_camera_path(path, count);
-}
-
 std::string tuning_key(const TuneOptions& o) {
   std::string key = fmt::format("{}{}/{}/{}x{}/{}spp/{}b", o.native_in_space ? "backend+" : "",
                                 o.work_sizes ? "bvh+work" : "bvh", to_string(o.objective), o.width,
@@ -80,7 +70,7 @@ TuneReport run_tune_session(const TuneOptions& o,
   LoadOptions load_options;
   load_options.scenes_dir = o.scenes_dir;
   Scene scene = load_scene(o.scene, load_options);
-  std::vector<CameraDesc> cameras = camera_positions(scene, o.camera_path, o.cameras);
+  std::vector<CameraDesc> cameras = cameras_along_path(scene, o.camera_path, o.cameras);
   SceneIndicators scene_indicators = compute_scene_indicators(scene);
 
   tuner::TunerOptions options;

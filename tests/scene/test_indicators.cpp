@@ -115,6 +115,35 @@ TEST(CameraSpline, PassesThroughItsKeyframesAndIsContinuous) {
   EXPECT_THROW(sample_camera_path(CameraPath{}, 10), std::invalid_argument);
 }
 
+TEST(CameraSpline, CamerasAlongPathFollowTheScenesPathOrTheAutomaticOne) {
+  Scene cube = unit_cube();
+  // No path of its own: path 0 is the automatic one, any other is an error.
+  const std::vector<CameraDesc> automatic = cameras_along_path(cube, 0, 7);
+  const std::vector<CameraDesc> expected = sample_camera_path(automatic_camera_path(cube), 7);
+  ASSERT_EQ(automatic.size(), 7u);
+  for (size_t i = 0; i < automatic.size(); ++i)
+    EXPECT_EQ(automatic[i].position, expected[i].position) << i;
+  EXPECT_THROW(cameras_along_path(cube, 1, 7), std::invalid_argument);
+  EXPECT_THROW(cameras_along_path(cube, -1, 7), std::invalid_argument);
+  EXPECT_THROW(cameras_along_path(cube, 0, 0), std::invalid_argument);
+  // With two paths, index 1 is the second one, ends included.
+  for (int p = 0; p < 2; ++p) {
+    CameraPath path;
+    path.name = p == 0 ? "first" : "second";
+    for (int i = 0; i < 2; ++i) {
+      CameraDesc k;
+      k.position = {static_cast<float>(10 * p + i), 2, 3};
+      path.keyframes.push_back(k);
+    }
+    cube.camera_paths.push_back(path);
+  }
+  const std::vector<CameraDesc> second = cameras_along_path(cube, 1, 3);
+  ASSERT_EQ(second.size(), 3u);
+  EXPECT_EQ(second.front().position, Vec3f(10, 2, 3));
+  EXPECT_EQ(second.back().position, Vec3f(11, 2, 3));
+  EXPECT_THROW(cameras_along_path(cube, 2, 3), std::invalid_argument);
+}
+
 TEST(CameraSpline, AutomaticPathGoesBothCloseAndFar) {
   Scene cube = unit_cube();
   CameraPath path = automatic_camera_path(cube);
