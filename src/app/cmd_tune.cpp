@@ -86,8 +86,9 @@ int run_tune(TuneArgs& a) {
         sum.race_frames, sum.search_frames, sum.race_changed, report.cameras.size());
   if (sum.fallbacks > 0)
     fmt::print(
-        "kept a yardstick at {} of {} cameras: the tuner's choice measured slower than the "
-        "default or native, its whole 95 % interval below 1 (its ratios in --json, 'rejected')\n",
+        "kept a yardstick at {} of {} cameras: the tuner's choice measured slower than native "
+        "by its median or than the default with its whole 95 % interval below 1 (its ratios in "
+        "--json, 'rejected')\n",
         sum.fallbacks, report.cameras.size());
   if (sum.capped > 0)
     fmt::print(

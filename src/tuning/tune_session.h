@@ -131,10 +131,11 @@ std::vector<tuner::Config> race_entrants(const tuner::Space& space, const tuner:
 // What a camera keeps after the comparison, given the chosen configuration's ratios
 // (`speedup`: default cost / chosen cost; `vs_native`: native cost / chosen cost, each a median
 // with its 95 % interval) and `native_over_default` (native cost / default cost). The choice
-// stands unless its whole interval against a yardstick lies below 1, i.e. it measured slower
-// than the default or (when native is in the space) than native; then the faster of the
-// allowed yardsticks by median is kept, so that tuning never ends measurably slower than what
-// it started from or what the user would use instead.
+// gives way when its whole interval against the default lies below 1, or (when native is in the
+// space) when its median against native does: native is what the user would use instead, so a
+// tuned tree is kept only where it measured at least as fast. Then the faster of the allowed
+// yardsticks by median is kept, so that tuning never ends slower than native or measurably slower
+// than what it started from.
 enum class KeepAfterComparison { kChosen, kDefault, kNative };
 KeepAfterComparison keep_after_comparison(const RatioInterval& speedup,
                                           const RatioInterval& vs_native,
