@@ -177,6 +177,11 @@ std::vector<tuner::Config> tuning_seeds(const tuner::Space& space, bool build_ti
     reinserted.optimal_collapse = has_param(defaults, "optimal_collapse");
     reinserted.is_static = true;
     seeds.push_back(to_tuner_config(space, reinserted));
+    // And the same from the spatial-split build: inside lost-empire's walls its trees beat both
+    // at some cameras (tune, render level 1.015-1.024 -> 1.025-1.045 over native, forty-sixth
+    // session, docs/bvh.md).
+    reinserted.quality = BvhQuality::kHigh;
+    seeds.push_back(to_tuner_config(space, reinserted));
   }
   return seeds;
 }

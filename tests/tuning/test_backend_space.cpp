@@ -138,7 +138,7 @@ TEST(BackendSpace, OptimalCollapseCountsOnlyWhereTheTreeIsCollapsed) {
 TEST(BackendSpace, SeedsAreEmbreesBvh8LeavesAndReinsertionOnlyWhereItsBuildIsFree) {
   const tuner::Space space = make_backend_space();
   const std::vector<tuner::Config> render = tuning_seeds(space, false);
-  ASSERT_EQ(render.size(), 3u);
+  ASSERT_EQ(render.size(), 4u);
   EXPECT_EQ(to_bvh_config(render[0]), embree_bvh8_config());
   EXPECT_EQ(to_bvh_config(render[1]), embree_bvh8_config(BvhQuality::kHigh));
   const BvhConfig reinserted = to_bvh_config(render[2]);
@@ -148,6 +148,12 @@ TEST(BackendSpace, SeedsAreEmbreesBvh8LeavesAndReinsertionOnlyWhereItsBuildIsFre
   EXPECT_EQ(reinserted.min_leaf, 4);
   EXPECT_EQ(reinserted.max_leaf, 28);
   EXPECT_EQ(reinserted.sah_block_size, 4);
+  EXPECT_EQ(reinserted.quality, BvhQuality::kMedium);
+  // The same reinserted tree from the spatial-split build.
+  BvhConfig split = to_bvh_config(render[3]);
+  EXPECT_EQ(split.quality, BvhQuality::kHigh);
+  split.quality = BvhQuality::kMedium;
+  EXPECT_EQ(split, reinserted);
   const std::vector<tuner::Config> total = tuning_seeds(space, true);
   ASSERT_EQ(total.size(), 1u);
   EXPECT_EQ(to_bvh_config(total[0]), embree_bvh8_config());
