@@ -20,34 +20,18 @@ namespace avx2 {
 }  // namespace avx2
 #undef TUNERAY_PACKET_LANES
 
-#if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))), \
-                             apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx512f,avx512vl,avx512bw,avx512dq")
-#endif
+#include "accel/avx512_target_begin.inc"
 #define TUNERAY_PACKET_LANES 16
-// GCC 12's AVX-512 intrinsics (_mm512_max_ps, _mm512_extractf64x4_pd, ...) fill their unused
-// merge operand from a self-initialised _mm512_undefined_ps(), which its -Wuninitialized reports
-// in the caller (GCC bug 105593, fixed in GCC 13).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
 namespace avx512 {
+// The streams' hand-over and ray-by-ray leaf tests run the AVX-512 copy of the single-ray
+// kernels (found as `single` from inside this namespace before tuneray::bvh::single).
+namespace single {
+#include "accel/bvh_traverse_kernel.inc"
+}  // namespace single
 #include "accel/bvh_packet_kernel.inc"
 }  // namespace avx512
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 #undef TUNERAY_PACKET_LANES
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+#include "accel/avx512_target_end.inc"
 
 IntersectBatchKernel select_coherent_batch_kernel(const TreeShape& shape) {
   return kernel_isa() == KernelIsa::kAvx512 ? avx512::coherent_batch_kernel(shape)

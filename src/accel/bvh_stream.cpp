@@ -10,6 +10,7 @@ namespace tuneray::bvh {
 namespace {
 
 using namespace detail;
+using namespace single;
 
 // Up to 64 rays share a traversal, one bit each: a node's fetch is shared by more rays than at
 // 32 (shadow batches 3-15 % faster on the shared scenes; 128 was slower again).

@@ -33,8 +33,9 @@ struct TraversalRay {
 
 // `watertight`: also set up the shear of the watertight test (three more divisions, which the
 // fast test does not need).
-inline TraversalRay make_traversal_ray(const Vec3f& org, const Vec3f& dir, float tnear, float tfar,
-                                       bool watertight = true) {
+[[gnu::always_inline]] inline TraversalRay make_traversal_ray(const Vec3f& org, const Vec3f& dir,
+                                                              float tnear, float tfar,
+                                                              bool watertight = true) {
   TraversalRay r;
   r.org = org;
   r.dir = dir;
@@ -161,8 +162,9 @@ using LanesOf = std::conditional_t<N == 8, Lanes8, Lanes4>;
 // rows: v0.xyz, e1.xyz, e2.xyz of kWidth triangles. Returns the lanes hit in (tnear, tfar) and
 // fills t/u/v of those lanes.
 template <class L>
-inline int intersect_lanes_mt(const typename L::V (&rows)[9], const TraversalRay& r, float tfar,
-                              LaneHits& out) {
+[[gnu::always_inline]] inline int intersect_lanes_mt(const typename L::V (&rows)[9],
+                                                     const TraversalRay& r, float tfar,
+                                                     LaneHits& out) {
   using V = typename L::V;
   const V ox = L::set1(r.org.x), oy = L::set1(r.org.y), oz = L::set1(r.org.z);
   const V dx = L::set1(r.dir.x), dy = L::set1(r.dir.y), dz = L::set1(r.dir.z);
@@ -203,16 +205,17 @@ inline int intersect_lanes_mt(const typename L::V (&rows)[9], const TraversalRay
 }
 
 // Lanes (bits 0..3) of one pack hit in (tnear, tfar); fills t/u/v of those lanes.
-inline int intersect_pack_mt(const float (*p)[4], const TraversalRay& r, float tfar,
-                             LaneHits& out) {
+[[gnu::always_inline]] inline int intersect_pack_mt(const float (*p)[4], const TraversalRay& r,
+                                                    float tfar, LaneHits& out) {
   __m128 rows[9];
   for (int k = 0; k < 9; ++k) rows[k] = _mm_load_ps(p[k]);
   return intersect_lanes_mt<Lanes4>(rows, r, tfar, out);
 }
 
 // Two packs in one AVX2 pass: lanes 0..3 are pack a, 4..7 pack b.
-inline int intersect_two_packs_mt(const float (*a)[4], const float (*b)[4], const TraversalRay& r,
-                                  float tfar, LaneHits& out) {
+[[gnu::always_inline]] inline int intersect_two_packs_mt(const float (*a)[4], const float (*b)[4],
+                                                         const TraversalRay& r, float tfar,
+                                                         LaneHits& out) {
   __m256 rows[9];
   for (int k = 0; k < 9; ++k)
     rows[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(a[k])), _mm_load_ps(b[k]), 1);
