@@ -1,7 +1,8 @@
-// The single-ray traversal of the tuned BVH as inline templates, shared by the single-ray
-// kernels (bvh_traverse.cpp) and the camera-ray streams (bvh_packet.cpp), which hand rays over to
-// it when a stream thins out and use its leaf tests so both give the same hits bit for bit.
-// Internal to src/accel.
+// The single-ray traversal of the tuned BVH (its AVX2 copy, tuneray::bvh::single, from
+// bvh_traverse_kernel.inc) and the helpers that group a batch's rays by direction octant, shared
+// by the single-ray kernels (bvh_traverse.cpp), the camera-ray streams (bvh_packet.cpp), which hand
+// rays over to the single-ray traversal when a stream thins out and use its leaf tests so both give
+// the same hits bit for bit, and the shadow streams (bvh_stream.cpp). Internal to src/accel.
 #pragma once
 
 #include <immintrin.h>
