@@ -32,7 +32,9 @@ struct TraversalRay {
 };
 
 // `watertight`: also set up the shear of the watertight test (three more divisions, which the
-// fast test does not need).
+// fast test does not need). Always inlined, as the pack tests below: each copy of the single-ray
+// kernels (AVX2, AVX-512) then computes them in its own instruction set, where GCC, with both
+// copies in one file, called one out-of-line AVX2 copy from both.
 [[gnu::always_inline]] inline TraversalRay make_traversal_ray(const Vec3f& org, const Vec3f& dir,
                                                               float tnear, float tfar,
                                                               bool watertight = true) {
