@@ -55,10 +55,14 @@ BvhConfig embree_bvh8_config(BvhQuality quality = BvhQuality::kMedium);
 // make_render_space(): the tuned BVH with Embree's BVH8 settings at medium quality, and, when
 // only render time counts, the same at high quality and the same leaves from a binary build with
 // its subtrees reinserted, collapsed by the SAH-optimal plan and laid out in one block (static),
-// at medium and at high quality (spatial splits, reinsertion and the relayout cost build time
+// at medium quality with a pack test priced below a node visit (kReinsertedSeedCostRatio) and at
+// high quality at Embree's pricing (spatial splits, reinsertion and the relayout cost build time
 // every frame under the `total` objective, where the search can still find them).
 // Seeding puts a tree as good as native's into every first simplex; the default configuration stays
 // the start point.
 std::vector<tuner::Config> tuning_seeds(const tuner::Space& space, bool build_time_counts);
+
+// cost_ratio (node visit over pack test) of the medium-quality reinserted seed.
+inline constexpr float kReinsertedSeedCostRatio = 1.25f;
 
 }  // namespace tuneray

@@ -149,10 +149,14 @@ TEST(BackendSpace, SeedsAreEmbreesBvh8LeavesAndReinsertionOnlyWhereItsBuildIsFre
   EXPECT_EQ(reinserted.max_leaf, 28);
   EXPECT_EQ(reinserted.sah_block_size, 4);
   EXPECT_EQ(reinserted.quality, BvhQuality::kMedium);
-  // The same reinserted tree from the spatial-split build.
+  EXPECT_FLOAT_EQ(reinserted.cost_ratio(), kReinsertedSeedCostRatio);
+  EXPECT_NE(kReinsertedSeedCostRatio, embree_bvh8_config().cost_ratio());
+  // The same reinserted tree from the spatial-split build, at Embree's pricing.
   BvhConfig split = to_bvh_config(render[3]);
   EXPECT_EQ(split.quality, BvhQuality::kHigh);
+  EXPECT_FLOAT_EQ(split.cost_ratio(), embree_bvh8_config().cost_ratio());
   split.quality = BvhQuality::kMedium;
+  split.set_cost_ratio(kReinsertedSeedCostRatio);
   EXPECT_EQ(split, reinserted);
   const std::vector<tuner::Config> total = tuning_seeds(space, true);
   ASSERT_EQ(total.size(), 1u);
