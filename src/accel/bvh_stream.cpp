@@ -107,7 +107,9 @@ RayMask occlude_stream(const TraversalContext& ctx, const TraversalRay* ray, Ray
         rays = 0;
         break;
       }
-      // Any hit ends a ray's query, so children go in slot order, as in the single-ray kernel.
+      // Any hit ends a ray's query, so children go in slot order: the lowest entered first, the
+      // others back from the highest down. (The single-ray kernel's order, the highest first,
+      // measured level to 3 % slower here: batch_replay, forty-seventh session.)
       const int first = __builtin_ctz(children);
       children &= children - 1;
       while (children) {
