@@ -26,6 +26,11 @@
 // placement of two identical trees alone does to a replay (2026-11-25 on this machine: 0.95 to
 // 1.08 with one copy each, conference and bunny).
 //
+// `--ray-weight W` adds a second tuned backend of the same configuration with ray_weight=W,
+// priced by a ray sample (accel/ray_sample.h) of `--ray-sample N` segments (default 4096) taken
+// from a separate render of the same view (`--train-spp K` passes after the timed ones, so other
+// random numbers than the replayed rays), and prints tuned/weighted per phase as --ab-env does.
+//
 // `--native-b PARAMS` replaces the tuned backend by a second native one built with these
 // parameters (e.g. `tri_accel=bvh4.triangle4`): Embree against Embree on the same rays.
 // `--camera N` records the render from the scene's camera N instead of its first.
@@ -38,6 +43,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -53,6 +59,7 @@
 #include "accel/factory.h"
 #include "accel/kernel_isa.h"
 #include "accel/ray_planes.h"
+#include "accel/ray_sample.h"
 #include "accel/tuned_bvh.h"
 #include "render/blue_noise_sampler.h"
 #include "render/film.h"
@@ -210,13 +217,15 @@ int replay_main(int argc, char** argv) {
                  "usage: batch_replay SCENE [--scenes-dir D] [--bvh C] [--size WxH] [--spp N] "
                  "[--repeats R] [--only camera|bounce|shadow] [--pollute KiB] [--single 0|1] "
                  "[--ab-env VAR=VALUE] [--ab-copies N] [--native-b PARAMS] [--camera N] "
-                 "[--path-camera K/N]\n");
+                 "[--path-camera K/N] [--ray-weight W] [--ray-sample N] [--train-spp K]\n");
     return argc < 2 ? 2 : 0;
   }
   std::string scene_spec = argv[1], scenes_dir, bvh, ab_env;
   std::optional<std::string> native_b;
   int width = 640, height = 360, spp = 4, repeats = 5, pollute_kib = 0, single = 0, ab_copies = 1;
   int only = -1;
+  float ray_weight = 0.0f;
+  int ray_sample_size = 4096, train_spp = 1;
   long camera = 0;
   bool camera_given = false;
   std::optional<std::pair<long, long>> path_camera;  // K of N along the camera path
@@ -282,6 +291,12 @@ int replay_main(int argc, char** argv) {
                      value.c_str());
         return 2;
       }
+    } else if (key == "--ray-weight") {
+      ray_weight = std::strtof(value.c_str(), nullptr);
+    } else if (key == "--ray-sample") {
+      ray_sample_size = std::max(1, std::atoi(value.c_str()));
+    } else if (key == "--train-spp") {
+      train_spp = std::max(1, std::atoi(value.c_str()));
     } else if (key == "--ab-env") {
       ab_env = value;
     } else if (key == "--native-b") {
@@ -308,7 +323,9 @@ int replay_main(int argc, char** argv) {
   EmbreeNativeAccel native;
   native.build(g);
   TunedBvhAccel tuned(parse_bvh_config(bvh));
-  tuned.build(g);
+  const BuildStats tuned_stats = tuned.build(g);
+  std::printf("tuned: build %.0f ms; %zu nodes; %s\n", tuned_stats.build_ms, tuned_stats.node_count,
+              tuned_stats.notes.c_str());
   std::unique_ptr<Accel> second;
   if (native_b) {
     second = make_accel("native", *native_b);
@@ -332,7 +349,6 @@ int replay_main(int argc, char** argv) {
       copies_b.back()->build(g);
     }
   }
-  const bool ab = !copies_b.empty();
 
   RecordingAccel recorder(native);
   RenderSettings settings;
@@ -357,6 +373,50 @@ int replay_main(int argc, char** argv) {
   TileRenderer renderer(scene, recorder, view, settings, *sampler);
   Film film(width, height);
   for (int s = 0; s < spp; ++s) renderer.render_pass(film, static_cast<uint32_t>(s), 1);
+  if (ray_weight > 0.0f) {
+    // The sample comes from other passes of the same view than the replayed ones; each segment
+    // ends where native Embree finds the ray's hit (shadow rays at their light).
+    RecordingAccel trainer(native);
+    TileRenderer train(scene, trainer, view, settings, *sampler);
+    Film train_film(width, height);
+    for (int s = 0; s < train_spp; ++s)
+      train.render_pass(train_film, static_cast<uint32_t>(spp + s), 1);
+    size_t total = 0;
+    for (const Batch& b : trainer.batches) total += b.rays.size();
+    const size_t stride = std::max<size_t>(1, total / static_cast<size_t>(ray_sample_size));
+    auto sample = std::make_shared<bvh::RaySample>();
+    size_t index = 0;
+    for (const Batch& b : trainer.batches) {
+      for (const Ray& r : b.rays) {
+        if (index++ % stride != 0) continue;
+        float length = r.tfar;
+        if (b.phase != kShadow) {
+          Hit h;
+          native.intersect(r, h);
+          length = h.t;
+        }
+        // A ray that leaves the scene crosses the root's box and ends past it.
+        if (!std::isfinite(length)) length = 1e30f;
+        sample->add(r, length);
+      }
+    }
+    BvhConfig weighted = parse_bvh_config(bvh);
+    weighted.ray_weight = ray_weight;
+    for (int k = 1; k < ab_copies; ++k) {
+      copies_a.push_back(std::make_unique<TunedBvhAccel>(parse_bvh_config(bvh)));
+      copies_a.back()->build(g);
+    }
+    for (int k = 0; k < ab_copies; ++k) {
+      copies_b.push_back(std::make_unique<TunedBvhAccel>(weighted));
+      copies_b.back()->set_ray_sample(sample);
+      const BuildStats stats = copies_b.back()->build(g);
+      if (k == 0)
+        std::printf("weighted: %zu segments of %zu rays; build %.0f ms; %zu nodes; %s\n",
+                    sample->size(), total, stats.build_ms, stats.node_count, stats.notes.c_str());
+    }
+    ab_env = "ray_weight=" + std::to_string(ray_weight);
+  }
+  const bool ab = !copies_b.empty();
   size_t rays[kPhases] = {};
   for (const Batch& b : recorder.batches) rays[b.phase] += b.rays.size();
   const bvh::TreeStats& ts = tuned.tree_stats();

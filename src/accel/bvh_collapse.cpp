@@ -9,6 +9,7 @@
 
 #include "accel/bvh_collapse_plan.h"
 #include "accel/bvh_node_box.h"
+#include "accel/ray_sample.h"
 #include "math/ray.h"
 
 namespace tuneray::bvh {
@@ -27,13 +28,14 @@ class Collapser {
   using Wide = NodeOf<kWide, kCompact>;
 
   static void run(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost,
-                  bool optimal) {
+                  bool optimal, const BoxMeasure& measure) {
     // Every wide node takes the place of at least one source node, so the source's count bounds
     // the buffer; pages past the nodes written are never touched.
     const size_t bytes = max_inner_nodes * whole_lines(sizeof(Wide));
     using Buffer = std::unique_ptr<char, decltype(&std::free)>;
     Buffer buffer(static_cast<char*>(tree_alloc(bytes)), &std::free);
     Collapser c;
+    c.measure_ = measure;
     c.base_ = buffer.get();
     c.capacity_ = max_inner_nodes;
     // A merged leaf takes no more lines than the leaves it is made of, so theirs bound the
@@ -50,7 +52,8 @@ class Collapser {
     }
     if (optimal)
       c.plan_ = std::make_unique<CollapsePlan<N, kCompact>>(
-          tree.root(), max_inner_nodes, c.flatten_limit_, merge_limit > 1 ? pack_cost : 1.0f);
+          tree.root(), max_inner_nodes, c.flatten_limit_, merge_limit > 1 ? pack_cost : 1.0f,
+          measure);
     const NodeRef root = c.plan_ ? c.collapse_planned(c.plan_->root()) : c.collapse(tree.root());
     TreeShape shape = tree.shape();
     shape.width = kWide;
@@ -73,7 +76,7 @@ class Collapser {
 
   Slot slot(const Source& parent, int i, int plan = -1) const {
     Slot s{child_box<N, kCompact>(parent, i), parent.child[i], 0.0f, 0, 0, 1, plan, {}};
-    s.area = s.box.surface_area();
+    s.area = measure_(s.box);
     s.part[0] = s.ref;
     if (is_leaf(s.ref)) {
       s.triangles = static_cast<int>(leaf_header(s.ref)->prim_count);
@@ -113,7 +116,7 @@ class Collapser {
     for (int i = 0; i < N; ++i) {
       if (n.child[i] == kEmptyRef) continue;
       int t = 0;
-      cost += best_cost(n.child[i], child_box<N, kCompact>(n, i).surface_area(), t);
+      cost += best_cost(n.child[i], measure_(child_box<N, kCompact>(n, i)), t);
       triangles += t;
     }
     if (triangles <= flatten_limit_) cost = std::min(cost, area * packs_cost(triangles));
@@ -130,7 +133,7 @@ class Collapser {
     for (int i = 0; i < N; ++i) {
       if (n.child[i] == kEmptyRef) continue;
       int t = 0;
-      tree += best_cost(n.child[i], child_box<N, kCompact>(n, i).surface_area(), t);
+      tree += best_cost(n.child[i], measure_(child_box<N, kCompact>(n, i)), t);
       triangles += t;
     }
     return area * packs_cost(triangles) <= tree;
@@ -179,7 +182,7 @@ class Collapser {
           box.extend(slots[j].box);
           const float saving = leaf_cost(slots[i].area, slots[i].triangles) +
                                leaf_cost(slots[j].area, slots[j].triangles) -
-                               leaf_cost(box.surface_area(), triangles);
+                               leaf_cost(measure_(box), triangles);
           if (saving > best_saving) {
             best_saving = saving;
             best_i = i;
@@ -192,7 +195,7 @@ class Collapser {
       Slot& into = slots[best_i];
       const Slot& from = slots[best_j];
       into.box = best_box;
-      into.area = best_box.surface_area();
+      into.area = measure_(best_box);
       into.triangles += from.triangles;
       for (int k = 0; k < from.parts; ++k) into.part[into.parts++] = from.part[k];
       slots[best_j] = slots[--count];
@@ -302,6 +305,7 @@ class Collapser {
   }
 
   std::unique_ptr<const CollapsePlan<N, kCompact>> plan_;
+  BoxMeasure measure_;  // what a box costs the rays that visit it (its area unless weighted)
   char* base_ = nullptr;
   size_t used_ = 0, capacity_ = 0;
   int merge_limit_ = 0;
@@ -312,25 +316,26 @@ class Collapser {
 };
 
 template <bool kCompact>
-void collapse(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost, bool optimal) {
+void collapse(Tree& tree, size_t max_inner_nodes, int merge_limit, float pack_cost, bool optimal,
+              const BoxMeasure& measure) {
   if (tree.shape().width == 2)
-    Collapser<2, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost, optimal);
+    Collapser<2, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost, optimal, measure);
   else
-    Collapser<4, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost, optimal);
+    Collapser<4, kCompact>::run(tree, max_inner_nodes, merge_limit, pack_cost, optimal, measure);
 }
 
 }  // namespace
 
 void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to, float pack_cost,
-                      bool optimal) {
+                      bool optimal, const BoxMeasure& measure) {
   const NodeRef root = tree.root();
   if (tree.shape().width >= kWide || root == kEmptyRef || is_leaf(root) || tree.relaid_out() ||
       tree.collapsed())
     return;
   if (tree.shape().compact)
-    collapse<true>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost, optimal);
+    collapse<true>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost, optimal, measure);
   else
-    collapse<false>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost, optimal);
+    collapse<false>(tree, max_inner_nodes, merge_leaves_up_to, pack_cost, optimal, measure);
 }
 
 }  // namespace tuneray::bvh

@@ -8,6 +8,7 @@
 
 #include "accel/bvh_config.h"
 #include "accel/bvh_tree.h"
+#include "accel/ray_sample.h"
 
 namespace tuneray::bvh {
 
@@ -35,7 +36,10 @@ namespace tuneray::bvh {
 // With `optimal`, which children each wide node takes is not decided by the greedy rule but by
 // the SAH-optimal plan of bvh_collapse_plan.h under the same prices (sibling leaves merge as
 // above afterwards; the slots they free stay free, where the plan wanted no further child).
+//
+// Every price above is a box's surface area times a constant; `measure` replaces the area
+// (accel/ray_sample.h: weighted by where a view's rays go).
 void collapse_to_wide(Tree& tree, size_t max_inner_nodes, int merge_leaves_up_to = 0,
-                      float pack_cost = 1.0f, bool optimal = false);
+                      float pack_cost = 1.0f, bool optimal = false, const BoxMeasure& measure = {});
 
 }  // namespace tuneray::bvh

@@ -7,9 +7,10 @@
 // slot of one child's to another's subtree; the programme does.
 //
 // Costs are those of the greedy collapse's leaf pricing (bvh_collapse.h): a wide node costs the
-// area of its box (one visit tests all its children), a leaf its area times `pack_cost` per pack
-// of 4 triangles. A subtree of at most `flatten_limit` triangles may become one leaf (0: leaves
-// stay as built).
+// measure of its box (one visit tests all its children), a leaf its measure times `pack_cost` per
+// pack of 4 triangles; the measure is the box's area, or ray_sample.h's weighted by a view's
+// rays. A subtree of at most `flatten_limit` triangles may become one leaf (0: leaves stay as
+// built).
 #pragma once
 
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include "accel/bvh_config.h"
 #include "accel/bvh_node_box.h"
 #include "accel/bvh_tree.h"
+#include "accel/ray_sample.h"
 
 namespace tuneray::bvh {
 
@@ -36,8 +38,9 @@ class CollapsePlan {
   using Source = NodeOf<N, kCompact>;
 
   // `inner_nodes` (at least the source tree's inner node count) sizes the table once.
-  CollapsePlan(NodeRef root, size_t inner_nodes, int flatten_limit, float pack_cost)
-      : flatten_limit_(flatten_limit), pack_cost_(pack_cost) {
+  CollapsePlan(NodeRef root, size_t inner_nodes, int flatten_limit, float pack_cost,
+               const BoxMeasure& measure = {})
+      : flatten_limit_(flatten_limit), pack_cost_(pack_cost), measure_(measure) {
     nodes_.reserve(inner_nodes * N + 1);
     int triangles = 0;
     plan(root, 0.0f, triangles);
@@ -98,7 +101,7 @@ class CollapsePlan {
       child[i] = -1;
       if (source.child[i] == kEmptyRef) continue;
       int below = 0;
-      child[i] = plan(source.child[i], child_box<N, kCompact>(source, i).surface_area(), below);
+      child[i] = plan(source.child[i], measure_(child_box<N, kCompact>(source, i)), below);
       triangles = std::min(triangles + below, flatten_limit_ + 1);
     }
     Node& p = nodes_[index];  // the children's emplace_back may have moved it
@@ -161,6 +164,7 @@ class CollapsePlan {
 
   int flatten_limit_;
   float pack_cost_;
+  BoxMeasure measure_;  // a box's price (its area unless weighted by a view's rays)
   std::vector<Node> nodes_;
 };
 

@@ -94,7 +94,9 @@ std::string bvh_config_ranges() {
          "  collapse=0|1 (default 1; branching 2 or 4 stored as 8-wide nodes)\n"
          "  optimal_collapse=0|1 (default 0; the collapse's wide nodes chosen by an SAH-optimal "
          "plan)\n"
-         "  reinsert=0|1 (default 0; branching 2 optimised by subtree reinsertion)";
+         "  reinsert=0|1 (default 0; branching 2 optimised by subtree reinsertion)\n"
+         "  ray_weight=[0,1] (default 0; reinsertion and optimal collapse price boxes by a "
+         "view's sampled rays)";
 }
 
 void BvhConfig::set_cost_ratio(float ratio) {
@@ -116,6 +118,8 @@ std::string BvhConfig::validate() {
       reject(std::string("parameter '") + key + "' = " + format_float(cost) +
              " is outside (0, 20]");
   }
+  if (!(ray_weight >= 0.0f && ray_weight <= 1.0f))
+    reject("parameter 'ray_weight' = " + format_float(ray_weight) + " is outside [0, 1]");
   if (min_leaf > max_leaf) {
     std::string note = "min_leaf " + std::to_string(min_leaf) + " > max_leaf " +
                        std::to_string(max_leaf) + ": min_leaf lowered to " +
@@ -135,7 +139,8 @@ std::string BvhConfig::to_string() const {
          ",static=" + (is_static ? "1" : "0") + ",compact=" + (compact ? "1" : "0") +
          ",robust=" + (robust ? "1" : "0") + ",collapse=" + (collapse ? "1" : "0") +
          ",optimal_collapse=" + (optimal_collapse ? "1" : "0") +
-         ",reinsert=" + (reinsert ? "1" : "0");
+         ",reinsert=" + (reinsert ? "1" : "0") +
+         (ray_weight != 0.0f ? ",ray_weight=" + format_float(ray_weight) : std::string());
 }
 
 BvhConfig parse_bvh_config(const std::string& text) {
@@ -190,6 +195,8 @@ BvhConfig parse_bvh_config(const std::string& text) {
       c.optimal_collapse = parse_flag(key, value);
     } else if (key == "reinsert") {
       c.reinsert = parse_flag(key, value);
+    } else if (key == "ray_weight") {
+      c.ray_weight = parse_float(key, value);
     } else {
       reject("unknown parameter '" + key + "'");
     }

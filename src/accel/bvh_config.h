@@ -33,6 +33,11 @@ struct BvhConfig {
   // true: a branching-2 tree is optimised by moving subtrees where they lower its SAH cost
   // before it is collapsed (accel/bvh_reinsert.h); no effect at branching 4 or 8.
   bool reinsert = false;
+  // In [0, 1]: how much the reinsertion and the SAH-optimal collapse price a box by the share of
+  // a view's sampled rays through it instead of by its area (accel/ray_sample.h). Takes effect
+  // only where the accelerator holds a ray sample (TunedBvhAccel::set_ray_sample) and one of
+  // those passes runs; 0 prices by area alone.
+  float ray_weight = 0.0f;
 
   static constexpr int kCollapsedWidth = 8;
   // Whether the build's tree is collapsed (collapse on and fewer than 8 children a node).
@@ -52,7 +57,8 @@ struct BvhConfig {
   // returned string describes the repair (empty if none).
   std::string validate();
 
-  // `quality=medium,branching=2,max_depth=32,...` with all 11 parameters; parses back.
+  // `quality=medium,branching=2,max_depth=32,...` with all 11 parameters and the switches
+  // (ray_weight only when not 0); parses back.
   std::string to_string() const;
 
   bool operator==(const BvhConfig&) const = default;
@@ -60,7 +66,7 @@ struct BvhConfig {
 
 // Parses any subset of the parameters from `key=value,...` (keys: quality, branching, max_depth,
 // sah_block_size, min_leaf, max_leaf, trav_cost, int_cost, cost_ratio, static, compact, robust,
-// collapse, optimal_collapse, reinsert)
+// collapse, optimal_collapse, reinsert, ray_weight)
 // on top of the defaults, then validates. Throws std::invalid_argument listing the valid ranges.
 BvhConfig parse_bvh_config(const std::string& text);
 

@@ -42,6 +42,8 @@ class Reinserter {
  public:
   using Source = NodeOf<2, kCompact>;
 
+  explicit Reinserter(const BoxMeasure& measure = {}) : measure_(measure) {}
+
   // False if the tree is not a proper binary tree (a node with an empty slot).
   bool load(NodeRef root_ref) {
     BBox root_box;
@@ -109,7 +111,7 @@ class Reinserter {
     const int index = static_cast<int>(nodes_.size());
     nodes_.push_back({});
     nodes_[index].box = box;
-    nodes_[index].area = box.surface_area();
+    nodes_[index].area = measure_(box);
     nodes_[index].parent = parent;
     if (is_leaf(ref)) {
       nodes_[index].leaf = ref;
@@ -154,7 +156,7 @@ class Reinserter {
     for (; index >= 0; index = nodes_[index].parent) {
       Node& n = nodes_[index];
       n.box = merged(nodes_[n.child[0]].box, nodes_[n.child[1]].box);
-      n.area = n.box.surface_area();
+      n.area = measure_(n.box);
     }
   }
 
@@ -188,7 +190,7 @@ class Reinserter {
       queue_.pop_back();
       if (e.induced + xarea >= best_cost) break;
       const Node& n = nodes_[e.node];
-      const float direct = merged(n.box, xbox).surface_area();
+      const float direct = measure_(merged(n.box, xbox));
       const float cost = e.induced + direct;
       if (cost < best_cost) {
         best_cost = cost;
@@ -234,6 +236,7 @@ class Reinserter {
     int node;
   };
 
+  BoxMeasure measure_;  // a box's price: its area, or weighted by a view's rays (ray_sample.h)
   std::vector<Node> nodes_;
   std::vector<Entry> queue_;
   int root_ = -1;
@@ -243,10 +246,11 @@ class Reinserter {
 };
 
 template <bool kCompact>
-ReinsertStats run(Tree& tree, int max_depth) {
+ReinsertStats run(Tree& tree, int max_depth, const BoxMeasure& measure) {
   ReinsertStats stats;
   stats.kept_original = true;
-  Reinserter<kCompact> r;
+  stats.weighted = measure.weighted();
+  Reinserter<kCompact> r(measure);
   if (!r.load(tree.root())) return stats;
   stats.cost_before = r.cost();
   double cost = stats.cost_before;
@@ -279,22 +283,24 @@ ReinsertStats run(Tree& tree, int max_depth) {
 
 }  // namespace
 
-ReinsertStats reinsert_subtrees(Tree& tree, int max_depth) {
+ReinsertStats reinsert_subtrees(Tree& tree, int max_depth, const BoxMeasure& measure) {
   const NodeRef root = tree.root();
   if (root == kEmptyRef || is_leaf(root) || tree.shape().width != 2 || tree.collapsed()) {
     ReinsertStats stats;
     stats.kept_original = true;
     return stats;
   }
-  return tree.shape().compact ? run<true>(tree, max_depth) : run<false>(tree, max_depth);
+  return tree.shape().compact ? run<true>(tree, max_depth, measure)
+                              : run<false>(tree, max_depth, measure);
 }
 
 std::string describe(const ReinsertStats& stats) {
   std::ostringstream out;
   if (stats.rounds == 0) return "reinsertion: nothing to do";
   out.precision(4);
-  out << "reinsertion: SAH " << stats.cost_before << " -> " << stats.cost_after << " in "
-      << stats.rounds << " rounds, " << stats.moves << " moves";
+  out << "reinsertion: " << (stats.weighted ? "ray-weighted cost " : "SAH ") << stats.cost_before
+      << " -> " << stats.cost_after << " in " << stats.rounds << " rounds, " << stats.moves
+      << " moves";
   if (stats.kept_original)
     out << ", tree kept as built";
   else

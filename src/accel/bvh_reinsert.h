@@ -14,23 +14,26 @@
 #include <string>
 
 #include "accel/bvh_tree.h"
+#include "accel/ray_sample.h"
 
 namespace tuneray::bvh {
 
 struct ReinsertStats {
-  double cost_before = 0.0;  // summed surface area of the inner nodes over the root's
+  double cost_before = 0.0;  // summed measure (surface area) of the inner nodes over the root's
   double cost_after = 0.0;
   int rounds = 0;
   size_t moves = 0;            // subtrees taken out and put back (possibly where they were)
   int depth = 0;               // of the tree kept
   bool kept_original = false;  // the result was deeper than `max_depth`, or nothing to do
+  bool weighted = false;       // boxes priced by a view's rays (ray_sample.h), not by area
 };
 
 // Optimizes a binary tree (width 2, either layout) in place: its inner nodes are rewritten into
 // one buffer the tree owns, its leaves stay where they are. Trees of other widths, or with a
 // leaf for a root, are left as they are. A result deeper than `max_depth` (the traversal's
-// stack is sized by it) is discarded and the tree kept as built.
-ReinsertStats reinsert_subtrees(Tree& tree, int max_depth);
+// stack is sized by it) is discarded and the tree kept as built. `measure` replaces the boxes'
+// surface area in the cost (ray_sample.h); its default is the area.
+ReinsertStats reinsert_subtrees(Tree& tree, int max_depth, const BoxMeasure& measure = {});
 
 std::string describe(const ReinsertStats& stats);
 

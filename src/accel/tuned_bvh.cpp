@@ -10,6 +10,16 @@
 
 namespace tuneray {
 
+namespace {
+
+BBox bounds_of(const GeometryView& geometry) {
+  BBox box;
+  for (size_t i = 0; i < geometry.vertex_count; ++i) box.extend(geometry.positions[i]);
+  return box;
+}
+
+}  // namespace
+
 TunedBvhAccel::TunedBvhAccel(BvhConfig config, std::shared_ptr<EmbreeDevice> device)
     : device_(std::move(device)) {
   set_config(config);
@@ -29,15 +39,22 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   std::string reinsert_note;
   try {
     result = bvh::build_tree(geometry, config_, *device_, primitives_, *next);
+    const bool weighted = rays_ && !rays_->empty() && config_.ray_weight > 0.0f &&
+                          (config_.reinserts() || config_.collapses_optimally());
+    const bvh::BoxMeasure measure =
+        weighted ? bvh::BoxMeasure(rays_.get(), config_.ray_weight, bounds_of(geometry))
+                 : bvh::BoxMeasure();
     // The traversal's stack holds a path of kMaxTraversalDepth nodes (8 wide after the
     // collapse); the builder's max_depth bounds Embree's build, not this optimisation.
     if (config_.reinserts())
-      reinsert_note = bvh::describe(bvh::reinsert_subtrees(*next, bvh::kMaxTraversalDepth));
+      reinsert_note =
+          bvh::describe(bvh::reinsert_subtrees(*next, bvh::kMaxTraversalDepth, measure));
     // Leaves merge up to the configuration's largest leaf, so max_leaf keeps its meaning, and
     // are priced with its costs.
     if (config_.collapses())
       bvh::collapse_to_wide(*next, result.inner_nodes, config_.max_leaf,
-                            config_.int_cost / config_.trav_cost, config_.optimal_collapse);
+                            config_.int_cost / config_.trav_cost, config_.optimal_collapse,
+                            measure);
     if (config_.is_static) bvh::relayout_depth_first(*next);
   } catch (...) {
     tree_.reset();
@@ -75,6 +92,10 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   if (tree_->collapsed())
     add(config_.optimal_collapse ? "collapsed into 8-wide nodes by the SAH-optimal plan"
                                  : "collapsed into 8-wide nodes");
+  if (config_.ray_weight > 0.0f && (config_.reinserts() || config_.collapses_optimally()))
+    add(rays_ && !rays_->empty()
+            ? "boxes priced by " + std::to_string(rays_->size()) + " sampled rays of the view"
+            : "ray_weight without a ray sample: boxes priced by area");
   if (tree_->relaid_out()) add("relaid out depth-first in one allocation");
   if (config_.quality == BvhQuality::kHigh)
     add("spatial splits: " + std::to_string(result.spatial_splits) + ", references " +

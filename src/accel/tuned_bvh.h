@@ -14,6 +14,7 @@
 #include "accel/bvh_tree.h"
 #include "accel/bvh_walk.h"
 #include "accel/embree_device.h"
+#include "accel/ray_sample.h"
 
 namespace tuneray {
 
@@ -25,6 +26,11 @@ class TunedBvhAccel final : public Accel {
   // Validates (throws std::invalid_argument); takes effect at the next build().
   void set_config(const BvhConfig& config);
   const BvhConfig& config() const { return config_; }
+
+  // Rays of the view the tree is for (accel/ray_sample.h), used by later builds whose
+  // configuration has a ray_weight; null: every box is priced by its area.
+  void set_ray_sample(std::shared_ptr<const bvh::RaySample> rays) { rays_ = std::move(rays); }
+  const std::shared_ptr<const bvh::RaySample>& ray_sample() const { return rays_; }
 
   std::string name() const override { return "tuned"; }
   std::string describe() const override { return config_.to_string(); }
@@ -57,6 +63,7 @@ class TunedBvhAccel final : public Accel {
   BvhConfig config_;
   std::string config_note_;
   std::shared_ptr<EmbreeDevice> device_;
+  std::shared_ptr<const bvh::RaySample> rays_;
   bvh::PrimitiveCache primitives_;
   std::unique_ptr<bvh::Tree> tree_;
   bvh::TraversalContext context_;

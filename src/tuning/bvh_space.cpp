@@ -133,6 +133,8 @@ tuner::Config to_tuner_config(const tuner::Space& space, const BvhConfig& b) {
     c.set_bool("optimal_collapse", b.optimal_collapse);
   else if (b.collapses_optimally())
     throw std::invalid_argument("optimal_collapse=1 is not part of this search space");
+  if (b.ray_weight != 0.0f)  // it prices boxes by a view's rays, which no search space holds
+    throw std::invalid_argument("ray_weight is not part of this search space");
   if (has_param(c, "backend")) c.set_enum("backend", "tuned");
   return space.canonical(c);
 }
