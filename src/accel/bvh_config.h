@@ -33,10 +33,11 @@ struct BvhConfig {
   // true: a branching-2 tree is optimised by moving subtrees where they lower its SAH cost
   // before it is collapsed (accel/bvh_reinsert.h); no effect at branching 4 or 8.
   bool reinsert = false;
-  // In [0, 1]: how much the reinsertion and the SAH-optimal collapse price a box by the share of
-  // a view's sampled rays through it instead of by its area (accel/ray_sample.h). Takes effect
-  // only where the accelerator holds a ray sample (TunedBvhAccel::set_ray_sample) and one of
-  // those passes runs; 0 prices by area alone.
+  // In [0, 1]: how much the passes after the build (reinsertion, collapse) price a box by the
+  // share of a view's sampled rays through it instead of by its area (accel/ray_sample.h). Takes
+  // effect only where the accelerator holds a ray sample (TunedBvhAccel::set_ray_sample) and the
+  // reinsertion or the SAH-optimal collapse runs (a greedy collapse after a reinsertion then
+  // uses it too); 0 prices by area alone.
   float ray_weight = 0.0f;
 
   static constexpr int kCollapsedWidth = 8;
