@@ -292,11 +292,22 @@ int replay_main(int argc, char** argv) {
         return 2;
       }
     } else if (key == "--ray-weight") {
-      ray_weight = std::strtof(value.c_str(), nullptr);
-    } else if (key == "--ray-sample") {
-      ray_sample_size = std::max(1, std::atoi(value.c_str()));
-    } else if (key == "--train-spp") {
-      train_spp = std::max(1, std::atoi(value.c_str()));
+      char* end = nullptr;
+      ray_weight = std::strtof(value.c_str(), &end);
+      if (end == value.c_str() || *end != '\0' || !(ray_weight > 0.0f && ray_weight <= 1.0f)) {
+        std::fprintf(stderr, "batch_replay: --ray-weight takes a number in (0, 1], not '%s'\n",
+                     value.c_str());
+        return 2;
+      }
+    } else if (key == "--ray-sample" || key == "--train-spp") {
+      char* end = nullptr;
+      const long n = std::strtol(value.c_str(), &end, 10);
+      if (end == value.c_str() || *end != '\0' || n < 1 || n > 1 << 24) {
+        std::fprintf(stderr, "batch_replay: %s takes a whole number from 1 to %d, not '%s'\n",
+                     key.c_str(), 1 << 24, value.c_str());
+        return 2;
+      }
+      (key == "--ray-sample" ? ray_sample_size : train_spp) = static_cast<int>(n);
     } else if (key == "--ab-env") {
       ab_env = value;
     } else if (key == "--native-b") {
@@ -309,6 +320,12 @@ int replay_main(int argc, char** argv) {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
     }
+  }
+  if (ray_weight > 0.0f && (!ab_env.empty() || native_b)) {
+    std::fprintf(stderr,
+                 "batch_replay: --ray-weight takes the second column; give it without "
+                 "--ab-env and --native-b\n");
+    return 2;
   }
   if (camera_given && path_camera) {
     std::fprintf(stderr, "batch_replay: give --camera or --path-camera, not both\n");
