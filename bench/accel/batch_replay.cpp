@@ -43,7 +43,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -412,8 +411,6 @@ int replay_main(int argc, char** argv) {
           native.intersect(r, h);
           length = h.t;
         }
-        // A ray that leaves the scene crosses the root's box and ends past it.
-        if (!std::isfinite(length)) length = 1e30f;
         sample->add(r, length);
       }
     }

@@ -16,16 +16,12 @@ float safe_inverse(float d) {
   return 1.0f / d;
 }
 
-bool finite(const Vec3f& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 }  // namespace
 
 void RaySample::add(const Ray& ray, float length) {
   if (std::isnan(length)) return;  // fmin would take the other operand
   length = std::fmin(length, ray.tfar);
-  if (!finite(ray.org) || !finite(ray.dir) || !std::isfinite(length) || !(length >= 0.0f) ||
+  if (!is_finite(ray.org) || !is_finite(ray.dir) || !std::isfinite(length) || !(length >= 0.0f) ||
       (ray.dir.x == 0.0f && ray.dir.y == 0.0f && ray.dir.z == 0.0f))
     return;
   if (size_ % 8 == 0) {

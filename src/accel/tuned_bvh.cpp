@@ -37,13 +37,16 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   auto next = std::make_unique<bvh::Tree>();
   bvh::BuildResult result;
   std::string reinsert_note;
+  // ray_weight reaches the tree through the passes after the build that price boxes.
+  const bool weighted =
+      config_.ray_weight > 0.0f && (config_.reinserts() || config_.collapses_optimally());
+  const bool has_sample = rays_ && !rays_->empty();
   try {
     result = bvh::build_tree(geometry, config_, *device_, primitives_, *next);
-    const bool weighted = rays_ && !rays_->empty() && config_.ray_weight > 0.0f &&
-                          (config_.reinserts() || config_.collapses_optimally());
     const bvh::BoxMeasure measure =
-        weighted ? bvh::BoxMeasure(rays_.get(), config_.ray_weight, bounds_of(geometry))
-                 : bvh::BoxMeasure();
+        weighted && has_sample
+            ? bvh::BoxMeasure(rays_.get(), config_.ray_weight, bounds_of(geometry))
+            : bvh::BoxMeasure();
     // The traversal's stack holds a path of kMaxTraversalDepth nodes (8 wide after the
     // collapse); the builder's max_depth bounds Embree's build, not this optimisation.
     if (config_.reinserts())
@@ -92,8 +95,8 @@ BuildStats TunedBvhAccel::build(const GeometryView& geometry) {
   if (tree_->collapsed())
     add(config_.optimal_collapse ? "collapsed into 8-wide nodes by the SAH-optimal plan"
                                  : "collapsed into 8-wide nodes");
-  if (config_.ray_weight > 0.0f && (config_.reinserts() || config_.collapses_optimally()))
-    add(rays_ && !rays_->empty()
+  if (weighted)
+    add(has_sample
             ? "boxes priced by " + std::to_string(rays_->size()) + " sampled rays of the view"
             : "ray_weight without a ray sample: boxes priced by area");
   if (tree_->relaid_out()) add("relaid out depth-first in one allocation");
