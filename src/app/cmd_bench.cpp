@@ -159,6 +159,10 @@ CommandAction add_bench_command(CLI::App& app) {
       ->capture_default_str();
   p->add_flag("!--no-denoise", peers->denoise, "Skip the runs with the denoiser");
   add_radiance_cache_options(p, peers->cache);  // vertex 0: no cached columns
+  p->add_option("--path-reuse", peers->path_reuse,
+                "Also runs with path reuse in pools of this many pixels (0: no reused columns)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   p->add_option("--json", *peers_json, "Write results as JSON");
 
   return [=] {

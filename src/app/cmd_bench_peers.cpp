@@ -27,6 +27,7 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
              "tuneray 8b", "spp", "ratio raw", "ratio 8-bit");
   if (o.denoise) fmt::print(" {:>14} {:>15}", "denoised raw", "denoised 8-bit");
   if (o.cache.vertex > 0) fmt::print(" {:>12} {:>13}", "cached raw", "cached 8-bit");
+  if (o.path_reuse > 0) fmt::print(" {:>12} {:>13}", "reused raw", "reused 8-bit");
   fmt::print("\n");
   for (const PeersRow& row : r.rows) {
     fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.5f} {:>9.1f} {:>11.3f} {:>12.3f}", row.time_s,
@@ -36,6 +37,8 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
       fmt::print(" {:>14.3f} {:>15.3f}", row.ratio(row.denoised), row.ratio(row.denoised_ldr));
     if (o.cache.vertex > 0)
       fmt::print(" {:>12.3f} {:>13.3f}", row.ratio(row.cached), row.ratio(row.cached_ldr));
+    if (o.path_reuse > 0)
+      fmt::print(" {:>12.3f} {:>13.3f}", row.ratio(row.reused), row.ratio(row.reused_ldr));
     fmt::print("\n");
   }
   fmt::print(
@@ -43,13 +46,15 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
       "8-bit: tuneray's image and reference through the pathtracer's output transform (clamp to\n"
       "[0,1], floor(255.01 x)/255), as the pathtracer's own numbers are. Denoised: the same\n"
       "runs with --denoise, the filtering counted as frame time (ratios to the pathtracer).\n"
-      "Cached: the same runs with the radiance cache (--cache-vertex {}; biased).\n",
-      o.cache.vertex);
+      "Cached: the same runs with the radiance cache (--cache-vertex {}; biased).\n"
+      "Reused: the same runs with path reuse in pools of {} pixels (--path-reuse; unbiased).\n",
+      o.cache.vertex, o.path_reuse);
   fmt::print("\nAs measured against tuneray's reference (its noise included):\n");
   fmt::print("{:>7} {:>11} {:>11} {:>11} {:>12}", "time s", "tuneray", "tuneray 8b", "ratio raw",
              "ratio 8-bit");
   if (o.denoise) fmt::print(" {:>14} {:>15}", "denoised raw", "denoised 8-bit");
   if (o.cache.vertex > 0) fmt::print(" {:>12} {:>13}", "cached raw", "cached 8-bit");
+  if (o.path_reuse > 0) fmt::print(" {:>12} {:>13}", "reused raw", "reused 8-bit");
   fmt::print("\n");
   for (const PeersRow& row : r.rows) {
     fmt::print("{:>7.2f} {:>11.5f} {:>11.5f} {:>11.3f} {:>12.3f}", row.time_s, row.raw.measured,
@@ -60,6 +65,9 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
     if (o.cache.vertex > 0)
       fmt::print(" {:>12.3f} {:>13.3f}", row.measured_ratio(row.cached),
                  row.measured_ratio(row.cached_ldr));
+    if (o.path_reuse > 0)
+      fmt::print(" {:>12.3f} {:>13.3f}", row.measured_ratio(row.reused),
+                 row.measured_ratio(row.reused_ldr));
     fmt::print("\n");
   }
 }
@@ -76,6 +84,7 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
                       {"cache_vertex", o.cache.vertex},
                       {"cache_cell", o.cache.cell},
                       {"cache_train", o.cache.train},
+                      {"path_reuse", o.path_reuse},
                       {"skipped", r.skipped}};
   if (r.skipped) {
     j["reason"] = r.reason;
@@ -110,6 +119,10 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
     if (o.cache.vertex > 0) {
       add(out, "cached", row, row.cached);
       add(out, "cached_8bit", row, row.cached_ldr);
+    }
+    if (o.path_reuse > 0) {
+      add(out, "reused", row, row.reused);
+      add(out, "reused_8bit", row, row.reused_ldr);
     }
     j["rows"].push_back(out);
   }

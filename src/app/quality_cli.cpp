@@ -72,6 +72,12 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
                 "Biased: the written image is filtered by the edge-avoiding denoiser guided by "
                 "first-hit albedo and normal (the film itself stays unbiased)");
   add_radiance_cache_options(cmd, o.cache);
+  cmd->add_option("--path-reuse", o.path_reuse,
+                  "Unbiased: pools of this many neighbouring pixels share their paths' second "
+                  "vertices on diffuse surfaces, each connected by a shadow ray (0 = off; needs "
+                  "--max-bounces 2 or more and no --cache-vertex)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   cmd->add_flag("--adaptive", q.adaptive_on,
                 std::string("Adaptive sampling in frame-budget mode: extra samples where the "
                             "error is highest") +

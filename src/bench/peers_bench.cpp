@@ -90,6 +90,8 @@ void check_peers_options(const PeersBenchOptions& o) {
   if (o.reference_spp < 2) fail("--reference-spp must be at least 2");
   if (o.repeats < 1 || o.timing_frames < 1) fail("--repeats must be at least 1");
   if (!(o.frame_ms > 0) || !std::isfinite(o.frame_ms)) fail("--frame-ms must be a positive number");
+  if (o.path_reuse < 0 || o.path_reuse == 1)
+    fail("--path-reuse must be 0 (off) or a pool of at least 2 pixels");
   make_accel(o.accel, o.bvh);  // an unknown backend or parameter fails before anything runs
 }
 
@@ -175,7 +177,7 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
   settings.max_bounces = o.peer.max_path_length;
   const size_t nt = o.times_s.size();
   std::vector<std::vector<double>> ours_rmse(nt), ours_ldr(nt), ours_spp(nt), denoised(nt),
-      denoised_ldr(nt), cached(nt), cached_ldr(nt);
+      denoised_ldr(nt), cached(nt), cached_ldr(nt), reused(nt), reused_ldr(nt);
   std::vector<double> ours_ms_per_spp;
   for (int r = 0; r < o.repeats; ++r) {
     if (r > 0)  // the first repeat's pathtracer timings were taken above
@@ -215,6 +217,18 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
         cached_ldr[i].push_back(rmse_at_time(run_cached.time_ms, run_cached.rmse_ldr, t));
       }
     }
+    if (o.path_reuse > 0) {
+      RenderSettings with_reuse = settings;
+      with_reuse.quality.denoise = false;
+      with_reuse.quality.path_reuse = o.path_reuse;
+      OurRun run_reused = run_ours(scene, *accel, with_reuse, o.frame_ms, max_ms * 1.05, ours_truth,
+                                   ours_truth_ldr);
+      for (size_t i = 0; i < nt; ++i) {
+        double t = 1000.0 * o.times_s[i];
+        reused[i].push_back(rmse_at_time(run_reused.time_ms, run_reused.rmse, t));
+        reused_ldr[i].push_back(rmse_at_time(run_reused.time_ms, run_reused.rmse_ldr, t));
+      }
+    }
     say(fmt::format("repeat {}/{} done", r + 1, o.repeats));
   }
 
@@ -247,6 +261,8 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
     row.denoised_ldr = column(denoised_ldr[i], noise_mse_ldr);
     row.cached = column(cached[i], noise_mse);
     row.cached_ldr = column(cached_ldr[i], noise_mse_ldr);
+    row.reused = column(reused[i], noise_mse);
+    row.reused_ldr = column(reused_ldr[i], noise_mse_ldr);
     result.rows.push_back(row);
   }
   return result;

@@ -26,6 +26,8 @@ struct PeersBenchOptions {
   bool denoise = true;                  // also our runs with the denoiser on
   // Also our runs with the radiance cache (vertex 0: not run).
   RadianceCacheOptions cache = {.vertex = 1};
+  // Also our runs with path reuse in pools of this many pixels (0: not run; unbiased).
+  int path_reuse = 8;
 };
 
 // Throws std::invalid_argument naming the first option out of range.
@@ -59,6 +61,8 @@ struct PeersRow {
   OurError denoised, denoised_ldr;
   // The same with the radiance cache on (biased, like the denoiser).
   OurError cached, cached_ldr;
+  // The same with path reuse on (QualityOptions::path_reuse; unbiased).
+  OurError reused, reused_ldr;
   // Against the truth, as the pathtracer's error is: the comparison the targets are judged by.
   double ratio(const OurError& ours) const { return ours.truth / embree_rmse; }
   // Against our reference as measured (higher: the reference's noise included).

@@ -19,10 +19,15 @@ void set_clamp(QualityOptions& o, const QualityBenchOptions& a) {
   o.clamp_relative = a.clamp > 0 ? 0.0f : a.clamp_relative;
 }
 
+// Path reuse's rows share second vertices in pools of this many pixels
+// (QualityOptions::path_reuse).
+constexpr int kBenchReusePool = 16;
+
 void set_unbiased(QualitySwitches& s) {
   QualityOptions& o = s.quality;
   o.wavefront = o.sky_rgba = o.branchless_materials = o.adaptive = o.bsdf_sky = true;
   o.sampler = SamplerKind::kBlueNoise;
+  o.path_reuse = kBenchReusePool;
   s.one_texel = true;
 }
 
@@ -42,8 +47,9 @@ using A = QualityBenchOptions;
 // material evaluation, PCG numbers, a constant sky sampled uniformly, uniform sampling); each row
 // switches one technique on; "unbiased" switches on every technique that leaves the expected image
 // alone, "defaults" is QualityOptions{} (what the renderer does unless told otherwise),
-// "defaults+denoise" and "defaults+cache" are what turning the denoiser or the radiance cache on
-// by default would give, "all" switches on every one.
+// "defaults+denoise", "defaults+cache" and "defaults+reuse" are what turning the denoiser, the
+// radiance cache or path reuse on by default would give, "all" switches on every one (the cache
+// then switches path reuse off).
 const std::vector<Config>& configurations() {
   static const std::vector<Config> configs = {
       {"baseline", [](S&, const A&) {}},
@@ -59,6 +65,7 @@ const std::vector<Config>& configurations() {
       {"clamp", [](S& s, const A& a) { set_clamp(s.quality, a); }},
       {"denoise", [](S& s, const A&) { s.quality.denoise = true; }},
       {"cache", [](S& s, const A&) { s.quality.cache.vertex = kBenchCacheVertex; }},
+      {"reuse", [](S& s, const A&) { s.quality.path_reuse = kBenchReusePool; }},
       {"unbiased", [](S& s, const A&) { set_unbiased(s); }},
       {"defaults", [](S& s, const A&) { set_defaults(s); }},
       {"defaults+denoise",
@@ -70,6 +77,11 @@ const std::vector<Config>& configurations() {
        [](S& s, const A&) {
          set_defaults(s);
          s.quality.cache.vertex = kBenchCacheVertex;
+       }},
+      {"defaults+reuse",
+       [](S& s, const A&) {
+         set_defaults(s);
+         s.quality.path_reuse = kBenchReusePool;
        }},
       {"all",
        [](S& s, const A& a) {

@@ -50,10 +50,8 @@ Color PathIntegrator::environment_radiance(const EnvironmentLookup& at, bool spe
                                                          : environment_.eval(at);
 }
 
-Color PathIntegrator::finish(const PathWave& wave, size_t i, PathCounters& counters,
+Color PathIntegrator::finish(Color indirect, Color camera, PathCounters& counters,
                              float clamp) const {
-  Color indirect = wave.radiance(i);
-  const Color camera = wave.camera_radiance(i);
   if (!is_finite(indirect) || !is_finite(camera)) {
     ++counters.invalid_samples;
     return Color(0.0f);

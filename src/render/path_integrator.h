@@ -76,7 +76,22 @@ class PathIntegrator {
   bool needs_samples(const PathWave& wave, size_t i, bool found) const {
     return found && wave.depth[i] < settings_.max_bounces;
   }
-  Color finish(const PathWave& wave, size_t i, PathCounters& counters, float clamp) const;
+  Color finish(const PathWave& wave, size_t i, PathCounters& counters, float clamp) const {
+    return finish(wave.radiance(i), wave.camera_radiance(i), counters, clamp);
+  }
+  // The same from a path's two parts (PathWave::radiance and camera_radiance), for a scheduler
+  // that changes the first before the path's value is taken (path reuse).
+  Color finish(Color indirect, Color camera, PathCounters& counters, float clamp) const;
+  // Pixels per path-reuse pool (path_reuse.h), 0 when reuse is off: it is on for pools of two or
+  // more, paths that scatter at least twice, no Russian roulette at the first hit (its pdf
+  // would change the technique's) and no radiance cache (whose paths end at the second hit).
+  int reuse_pool_pixels() const {
+    const QualityOptions& q = settings_.quality;
+    return q.path_reuse >= 2 && settings_.max_bounces >= 2 &&
+                   settings_.russian_roulette_depth >= 2 && q.cache.vertex == 0
+               ? q.path_reuse
+               : 0;
+  }
   // Prefetches, in two steps, what shade8() will read about a hit (surface.h); a batch scheduler
   // calls step 0 far ahead and step 1 nearer.
   void prefetch_hit(const Hit& hit, int step) const {

@@ -114,6 +114,34 @@ F8 power_heuristic(F8 a, F8 b) {
   return simd::select(a2 + b2 > F8(0.0f), a2 / (a2 + b2), F8(0.0f));
 }
 
+// Path reuse (path_reuse.h): what the pool pass needs of the lanes at their first or second hit.
+// `lambert` the lanes that scatter on a Lambertian surface, `below` those whose shading frame
+// was replaced by the geometric one, `sampled` those with a next direction; the normals face
+// the incoming ray; `throughput` is the throughput into the next vertex (before roulette,
+// which reuse_pool_pixels keeps away from the first hit).
+void record_reuse(PathWave& w, size_t begin, M8 lambert, M8 below, M8 sampled, const V8& position,
+                  const V8& normal, const V8& shading_normal, const V8& throughput) {
+  const simd::I8 depth = simd::I8::load(w.depth.data() + begin);
+  const M8 first = lambert & (depth == simd::I8(0));
+  const M8 second = lambert.and_not(below) & (depth == simd::I8(1));
+  if (!(first | second).any()) return;
+  const M8 technique = first & sampled & (throughput.x > F8(0.0f)) & (throughput.y > F8(0.0f)) &
+                       (throughput.z > F8(0.0f));
+  const LaneOut at(position), ng(normal), ns(shading_normal), w1(throughput);
+  for (uint32_t m = (first | second).bits(); m; m &= m - 1) {
+    const int i = __builtin_ctz(m);
+    const size_t k = begin + static_cast<size_t>(i);
+    ReuseVertices& r = w.reuse[w.slot[k]];
+    if ((first.bits() >> i) & 1) {
+      r.technique = (technique.bits() >> i) & 1;
+      r.p1 = at[i], r.n1 = ns[i], r.ng1 = ng[i], r.w1 = w1[i];
+    } else if (r.technique) {
+      r.shared = true;
+      r.p2 = at[i], r.ng2 = ng[i], r.ns2 = ns[i], r.l2 = w.radiance(k);
+    }
+  }
+}
+
 }  // namespace
 
 void PathIntegrator::shade_misses(PathWave& w, size_t begin, M8 missed) const {
@@ -441,6 +469,8 @@ uint32_t PathIntegrator::shade8(PathWave& w, size_t begin, int count, const Hit*
   M8 going = lanes & bs.ok & !(opaque & (dot(wi_world, normal) <= F8(0.0f)));
   V8 new_beta = beta * bs.weight;
   going &= simd::max_component(new_beta) > F8(0.0f);
+  if (w.reuse)
+    record_reuse(w, begin, lanes & is_lambert, below, bs.ok, position, normal, shading.n, new_beta);
   // Russian roulette from russian_roulette_depth on.
   const simd::I8 depth = simd::I8::load(w.depth.data() + begin);
   const M8 roulette = (depth + simd::I8(1)) >= simd::I8(settings_.russian_roulette_depth);

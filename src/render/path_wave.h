@@ -16,6 +16,7 @@
 #include "accel/ray_planes.h"
 #include "math/ray.h"
 #include "math/vec.h"
+#include "render/path_reuse.h"
 #include "render/simd8.h"
 
 namespace tuneray {
@@ -70,6 +71,9 @@ struct PathWave {
   std::vector<int32_t> depth;  // index of the vertex the ray will hit (0 = camera ray)
   std::vector<int32_t> flags;
   std::vector<uint32_t> slot;  // the path's sample slot (its sampler and its result)
+  // Per slot, when path reuse is on (path_reuse.h): the shading step records the first two
+  // vertices there. Null: off.
+  ReuseVertices* reuse = nullptr;
 
   float* plane(int p) { return f[static_cast<size_t>(p)].data(); }
   const float* plane(int p) const { return f[static_cast<size_t>(p)].data(); }

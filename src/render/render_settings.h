@@ -59,6 +59,10 @@ struct QualityOptions {
   // the film itself keeps accumulating the unbiased estimate.
   bool denoise = false;
   RadianceCacheOptions cache;  // biased when on
+  // Unbiased: pools of this many neighbouring pixels share their paths' second vertices
+  // (render/path_reuse.h; 0 or 1 = off). Needs max_bounces and russian_roulette_depth >= 2 and
+  // no radiance cache, else it is off.
+  int path_reuse = 0;
 
   bool biased() const {
     return lowres_sky || regularize || clamp > 0 || clamp_relative > 0 || denoise ||

@@ -78,6 +78,12 @@ struct TileRenderer::WaveBuffers {
   std::vector<uint8_t> occluded, alive;
   std::vector<Color> result;                         // per slot
   std::vector<RadianceCache::Record> cache_records;  // of this thread's training paths
+  // Path reuse (path_reuse.h): per slot, the recorded vertices and the path's two parts until
+  // the pools have been gathered; the pools.
+  std::vector<ReuseVertices> reuse;
+  std::vector<Color> indirect, camera;
+  std::vector<uint32_t> pool_slots, pool_begin;
+  PathReuseScratch reuse_scratch;
 };
 
 struct TileRenderer::WavePool {
@@ -176,6 +182,14 @@ void TileRenderer::start_paths(WaveBuffers& b, const ClampThresholds& clamp) con
   const size_t padded = (paths + 7) / 8 * 8;
   if (!b.samplers) b.samplers = prototype_.make_bank();
   b.wave.with_cache = cache_ != nullptr;
+  if (integrator_.reuse_pool_pixels() > 0) {
+    b.reuse.assign(paths, ReuseVertices{});
+    b.indirect.resize(paths);
+    b.camera.resize(paths);
+    b.wave.reuse = b.reuse.data();
+  } else {
+    b.wave.reuse = nullptr;
+  }
   float* camera_u[4];
   for (int j = 0; j < 4; ++j) {
     b.camera_u[j].resize(padded);
@@ -302,7 +316,12 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
     for (size_t i = 0; i < n; ++i) {
       if ((b.alive[i / 8] >> (i % 8)) & 1) continue;
       const uint32_t slot = wave.slot[i];
-      b.result[slot] = integrator_.finish(wave, i, local, b.clamp[slot]);
+      if (wave.reuse) {
+        b.indirect[slot] = wave.radiance(i);
+        b.camera[slot] = wave.camera_radiance(i);
+      } else {
+        b.result[slot] = integrator_.finish(wave, i, local, b.clamp[slot]);
+      }
       if (const uint64_t key = wave.with_cache ? wave.cache_key(i) : 0) {
         const PixelSampleId& id = b.ids[slot];
         b.cache_records.push_back({key, id.y, id.x, id.index, wave.cache_incident(i)});
@@ -310,6 +329,17 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
     }
     wave.compact(b.alive);
   }
+  if (wave.reuse) reuse_and_finish(b, local);
+}
+
+void TileRenderer::reuse_and_finish(WaveBuffers& b, PathCounters& local) const {
+  reuse_pools(b.ids, integrator_.reuse_pool_pixels(), b.pool_slots, b.pool_begin);
+  const uint64_t t0 = settings_.quality.profile_phases ? now_ns() : 0;
+  local.shadow_rays += reuse_paths(integrator_.accel(), b.pool_slots, b.pool_begin, b.reuse,
+                                   b.indirect, b.reuse_scratch);
+  if (settings_.quality.profile_phases) local.shadow_ns += now_ns() - t0;
+  for (size_t slot = 0; slot < b.ids.size(); ++slot)
+    b.result[slot] = integrator_.finish(b.indirect[slot], b.camera[slot], local, b.clamp[slot]);
 }
 
 void TileRenderer::add_to_film(const WaveBuffers& b, Film& film) const {
@@ -387,7 +417,11 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
     const size_t spp = work.uniform_count;
     const size_t per_chunk =
         spp == 0 ? std::max<size_t>(1, pixel_count) : std::max<size_t>(1, batch / spp);
-    for (size_t k = per_chunk; k < pixel_count; k += per_chunk) chunk_begin.push_back(k);
+    // Path reuse's pools are runs of pixels: chunks of whole pools keep them, so the image
+    // does not depend on the batch size.
+    const size_t pool = static_cast<size_t>(std::max(1, integrator_.reuse_pool_pixels()));
+    const size_t chunk_pixels = (per_chunk + pool - 1) / pool * pool;
+    for (size_t k = chunk_pixels; k < pixel_count; k += chunk_pixels) chunk_begin.push_back(k);
     total_samples = static_cast<uint64_t>(spp) * pixel_count;
   } else {
     first.resize(pixel_count);

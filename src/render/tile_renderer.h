@@ -104,6 +104,8 @@ class TileRenderer {
   void start_paths(WaveBuffers& b, const ClampThresholds& clamp) const;
   void trace_paths(WaveBuffers& b, bool batched, PathCounters& counters) const;
   void add_to_film(const WaveBuffers& b, Film& film) const;
+  // Path reuse: the wave's pools gathered (path_reuse.h), then every path's value taken.
+  void reuse_and_finish(WaveBuffers& b, PathCounters& counters) const;
 
   const Scene& scene_;
   RenderSettings settings_;
