@@ -45,10 +45,14 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
       "ratio = tuneray RMSE / pathtracer RMSE at equal render time (< 1: tuneray is better).\n"
       "8-bit: tuneray's image and reference through the pathtracer's output transform (clamp to\n"
       "[0,1], floor(255.01 x)/255), as the pathtracer's own numbers are. Denoised: the same\n"
-      "runs with --denoise, the filtering counted as frame time (ratios to the pathtracer).\n"
-      "Cached: the same runs with the radiance cache (--cache-vertex {}; biased).\n"
-      "Reused: the same runs with path reuse in pools of {} pixels (--path-reuse; unbiased).\n",
-      o.cache.vertex, o.path_reuse);
+      "runs with --denoise, the filtering counted as frame time (ratios to the pathtracer).\n");
+  if (o.cache.vertex > 0)
+    fmt::print("Cached: the same runs with the radiance cache (--cache-vertex {}; biased).\n",
+               o.cache.vertex);
+  if (o.path_reuse > 0)
+    fmt::print(
+        "Reused: the same runs with path reuse in pools of {} pixels (--path-reuse; unbiased).\n",
+        o.path_reuse);
   fmt::print("\nAs measured against tuneray's reference (its noise included):\n");
   fmt::print("{:>7} {:>11} {:>11} {:>11} {:>12}", "time s", "tuneray", "tuneray 8b", "ratio raw",
              "ratio 8-bit");

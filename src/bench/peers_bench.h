@@ -27,7 +27,7 @@ struct PeersBenchOptions {
   // Also our runs with the radiance cache (vertex 0: not run).
   RadianceCacheOptions cache = {.vertex = 1};
   // Also our runs with path reuse in pools of this many pixels (0: not run; unbiased).
-  int path_reuse = 8;
+  int path_reuse = 16;
 };
 
 // Throws std::invalid_argument naming the first option out of range.

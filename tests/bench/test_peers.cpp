@@ -118,6 +118,9 @@ TEST(PeersBench, RefusesOptionsThatMakeNoSense) {
     o.accel = "tuned";
     o.bvh = "int_cost=4";
   })());
+  EXPECT_NO_THROW(refused([](PeersBenchOptions& o) { o.path_reuse = 0; })());
+  EXPECT_THROW(refused([](PeersBenchOptions& o) { o.path_reuse = 1; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](PeersBenchOptions& o) { o.path_reuse = -4; })(), std::invalid_argument);
 }
 
 // The nesting correction against a simulation: pixels whose samples are unit Gaussians around
@@ -190,7 +193,7 @@ TEST(PeersBench, TinyRunAgainstTheRealPathtracer) {
   for (const PeersRow& row : r.rows) {
     EXPECT_TRUE(std::isfinite(row.ratio(row.raw)) && row.ratio(row.raw) > 0);
     // The reference's noise comes off every column, and only it: the exact relation.
-    for (const OurError* e : {&row.raw, &row.denoised}) {
+    for (const OurError* e : {&row.raw, &row.denoised, &row.reused}) {
       EXPECT_LE(e->truth, e->measured);
       EXPECT_NEAR(
           e->truth * e->truth + r.reference_noise_rmse * r.reference_noise_rmse,
@@ -200,12 +203,15 @@ TEST(PeersBench, TinyRunAgainstTheRealPathtracer) {
     EXPECT_TRUE(std::isfinite(row.ratio(row.ldr)) && row.ratio(row.ldr) > 0);
     EXPECT_TRUE(std::isfinite(row.ratio(row.denoised)) && row.ratio(row.denoised) > 0);
     EXPECT_TRUE(std::isfinite(row.ratio(row.denoised_ldr)) && row.ratio(row.denoised_ldr) > 0);
+    EXPECT_TRUE(std::isfinite(row.ratio(row.reused_ldr)) && row.ratio(row.reused_ldr) > 0);
     EXPECT_GT(row.ours_spp, 0);
   }
   auto written = std::filesystem::last_write_time(r.embree_reference);
   o.denoise = false;
+  o.path_reuse = 0;
   PeersResult again = run_peers_bench(o);
-  EXPECT_EQ(again.rows.front().denoised.measured, 0.0);  // the column was not run
+  EXPECT_EQ(again.rows.front().denoised.measured, 0.0);  // the columns were not run
+  EXPECT_EQ(again.rows.front().reused.measured, 0.0);
   EXPECT_EQ(std::filesystem::last_write_time(again.embree_reference), written);
   EXPECT_EQ(again.embree.front().rmse, r.embree.front().rmse);  // same seeds, same image
 }
