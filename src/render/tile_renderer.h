@@ -61,7 +61,8 @@ class TileRenderer {
   }
   // Switches scheduler and work sizes between passes without rebuilding the integrator and its
   // lights: it keeps its own copy of the settings and reads none of these fields, and neither
-  // changes the image, only the speed (the tuner measures them frame by frame).
+  // changes the image, only the speed (the tuner measures them frame by frame). Path reuse is
+  // the exception: its pools follow the scheduler's order, so there the noise differs.
   void set_work_sizes(bool wavefront, int tile_size, int batch_size) {
     settings_.quality.wavefront = wavefront;
     settings_.tile_size = tile_size;
