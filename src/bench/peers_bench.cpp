@@ -185,7 +185,6 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
         embree_ms[i].push_back(
             embree_peer_benchmark(o.peer, result.embree[i].spp, o.timing_frames).frame_ms);
     settings.seed = 1000 + static_cast<uint64_t>(r);
-    settings.quality.denoise = false;
     OurRun run =
         run_ours(scene, *accel, settings, o.frame_ms, max_ms * 1.05, ours_truth, ours_truth_ldr);
     ours_ms_per_spp.push_back(run.time_ms.back() / run.spp.back());
@@ -195,39 +194,31 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
       ours_ldr[i].push_back(rmse_at_time(run.time_ms, run.rmse_ldr, t));
       ours_spp[i].push_back(spp_at_time(run, t));
     }
-    if (o.denoise) {
-      settings.quality.denoise = true;
-      OurRun filtered =
-          run_ours(scene, *accel, settings, o.frame_ms, max_ms * 1.05, ours_truth, ours_truth_ldr);
+    // A column's RMSE at each of the times, from one more run with `variant`'s settings.
+    auto add_column = [&](const RenderSettings& variant, std::vector<std::vector<double>>& raw,
+                          std::vector<std::vector<double>>& ldr) {
+      const OurRun v =
+          run_ours(scene, *accel, variant, o.frame_ms, max_ms * 1.05, ours_truth, ours_truth_ldr);
       for (size_t i = 0; i < nt; ++i) {
-        double t = 1000.0 * o.times_s[i];
-        denoised[i].push_back(rmse_at_time(filtered.time_ms, filtered.rmse, t));
-        denoised_ldr[i].push_back(rmse_at_time(filtered.time_ms, filtered.rmse_ldr, t));
+        const double t = 1000.0 * o.times_s[i];
+        raw[i].push_back(rmse_at_time(v.time_ms, v.rmse, t));
+        ldr[i].push_back(rmse_at_time(v.time_ms, v.rmse_ldr, t));
       }
+    };
+    if (o.denoise) {
+      RenderSettings with_denoiser = settings;
+      with_denoiser.quality.denoise = true;
+      add_column(with_denoiser, denoised, denoised_ldr);
     }
     if (o.cache.vertex > 0) {
       RenderSettings with_cache = settings;
-      with_cache.quality.denoise = false;
       with_cache.quality.cache = o.cache;
-      OurRun run_cached = run_ours(scene, *accel, with_cache, o.frame_ms, max_ms * 1.05, ours_truth,
-                                   ours_truth_ldr);
-      for (size_t i = 0; i < nt; ++i) {
-        double t = 1000.0 * o.times_s[i];
-        cached[i].push_back(rmse_at_time(run_cached.time_ms, run_cached.rmse, t));
-        cached_ldr[i].push_back(rmse_at_time(run_cached.time_ms, run_cached.rmse_ldr, t));
-      }
+      add_column(with_cache, cached, cached_ldr);
     }
     if (o.path_reuse > 0) {
       RenderSettings with_reuse = settings;
-      with_reuse.quality.denoise = false;
       with_reuse.quality.path_reuse = o.path_reuse;
-      OurRun run_reused = run_ours(scene, *accel, with_reuse, o.frame_ms, max_ms * 1.05, ours_truth,
-                                   ours_truth_ldr);
-      for (size_t i = 0; i < nt; ++i) {
-        double t = 1000.0 * o.times_s[i];
-        reused[i].push_back(rmse_at_time(run_reused.time_ms, run_reused.rmse, t));
-        reused_ldr[i].push_back(rmse_at_time(run_reused.time_ms, run_reused.rmse_ldr, t));
-      }
+      add_column(with_reuse, reused, reused_ldr);
     }
     say(fmt::format("repeat {}/{} done", r + 1, o.repeats));
   }
