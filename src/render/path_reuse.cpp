@@ -49,9 +49,7 @@ void reuse_pools(std::span<const PixelSampleId> ids, int pool_pixels,
     run_length.clear();
   };
   for (size_t k = 0; k < ids.size(); ++k) {
-    const bool same_pixel =
-        k > 0 && ids[k].x == ids[k - 1].x && ids[k].y == ids[k - 1].y && !run_length.empty();
-    if (same_pixel) {
+    if (k > 0 && ids[k].x == ids[k - 1].x && ids[k].y == ids[k - 1].y) {
       ++run_length.back();
       continue;
     }
@@ -105,6 +103,7 @@ uint64_t reuse_paths(const Accel& accel, std::span<const uint32_t> pool_slots,
   using simd::V8;
   const size_t slots = vertices.size();
   s.sum.assign(slots, 0.0f);
+  s.own.resize(slots);
   s.lr.resize(slots);
   s.gathered.assign(slots, Color(0.0f));
   s.shares.assign(slots, 0);
@@ -135,7 +134,7 @@ uint64_t reuse_paths(const Accel& accel, std::span<const uint32_t> pool_slots,
       for (int c = 0; c < 3; ++c) lr[c] = (indirect[j][c] - to.l2[c]) / to.w1[c];
       if (!(own > 0.0f) || !is_finite(lr)) continue;
       s.shares[j] = 1;
-      s.sum[j] = own;
+      s.own[j] = s.sum[j] = own;
       s.lr[j] = lr;
       // reuse_geometry for eight techniques at a time.
       const V8 p2(to.p2), ng2(to.ng2), ns2(to.ns2);
@@ -187,18 +186,15 @@ uint64_t reuse_paths(const Accel& accel, std::span<const uint32_t> pool_slots,
   for (size_t c = 0; c < s.rays.size(); ++c)
     if (!s.occluded[c]) s.sum[s.to[c]] += s.geometry[c];
   for (size_t j = 0; j < slots; ++j)
-    if (s.shares[j])
-      s.gathered[j] +=
-          vertices[j].w1 * s.lr[j] * (reuse_geometry(vertices[j], vertices[j]) / s.sum[j]);
+    if (s.shares[j]) s.gathered[j] += vertices[j].w1 * s.lr[j] * (s.own[j] / s.sum[j]);
   for (size_t c = 0; c < s.rays.size(); ++c) {
     if (s.occluded[c]) continue;
     const uint32_t i = s.from[c], j = s.to[c];
     s.gathered[i] += vertices[i].w1 * s.lr[j] * (s.geometry[c] / s.sum[j]);
   }
+  // The path's own walk beyond a shared x2 gives way to the pool's estimate; beyond any other x2
+  // it stays. A path outside every pool gathered nothing.
   for (size_t i = 0; i < slots; ++i) {
-    if (!vertices[i].technique || !is_finite(indirect[i])) continue;
-    // The path's own walk beyond a shared x2 gives way to the pool's estimate; beyond any other
-    // x2 it stays.
     if (s.shares[i]) indirect[i] = vertices[i].l2;
     indirect[i] += s.gathered[i];
   }

@@ -47,6 +47,7 @@ struct PathReuseScratch {
   std::vector<uint8_t> occluded;
   std::vector<uint32_t> from, to;  // slots of a candidate connection x1_from -> x2_to
   std::vector<float> geometry;
+  std::vector<float> own;  // per slot: its own technique's geometry, reuse_geometry(v, v)
   std::vector<float> sum;  // per slot: sum over the pool's techniques of geometry x visibility
   std::vector<Color> lr;   // per slot: the reflected radiance at x2 its walk found
   std::vector<Color> gathered;
