@@ -99,9 +99,15 @@ int run_render(const RenderArgs& a) {
     for (int f = 0; f < a.frames; ++f) {
       FrameResult frame = budget.render_frame(film);
       total.accumulate(frame.stats);
-      frames.push_back({{"frame", f}, {"ms", frame.ms}, {"spp", frame.spp}});
+      // Of the frame's samples, those traced with path reuse (all or none unless it is auto).
+      const double reused_spp = static_cast<double>(frame.stats.reused_samples) /
+                                (static_cast<double>(width) * height);
+      frames.push_back(
+          {{"frame", f}, {"ms", frame.ms}, {"spp", frame.spp}, {"reused_spp", reused_spp}});
       if (!a.quiet)
-        std::cout << "frame     " << f << ": " << frame.spp << " spp in " << frame.ms << " ms\n";
+        std::cout << "frame     " << f << ": " << frame.spp << " spp in " << frame.ms << " ms"
+                  << (reused_spp > 0 ? " (" + std::to_string(reused_spp) + " with path reuse)" : "")
+                  << "\n";
     }
   }
   for (int s = 0; a.frame_ms <= 0 && s < a.spp; ++s) {

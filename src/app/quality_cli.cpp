@@ -72,11 +72,11 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
                 "Biased: the written image is filtered by the edge-avoiding denoiser guided by "
                 "first-hit albedo and normal (the film itself stays unbiased)");
   add_radiance_cache_options(cmd, o.cache);
-  cmd->add_option("--path-reuse", o.path_reuse,
-                  "Unbiased: pools of this many neighbouring pixels share their paths' second "
-                  "vertices on diffuse surfaces, each connected by a shadow ray (0 = off; needs "
-                  "--max-bounces 2 or more and no --cache-vertex)")
-      ->check(CLI::Range(0, 64))
+  cmd->add_option("--path-reuse", q.path_reuse,
+                  "Unbiased: pools of N neighbouring pixels share their paths' second vertices on "
+                  "diffuse surfaces, each connected by a shadow ray: N = 2..64, off (or 0), or "
+                  "auto (pools of 16 in frame-budget mode where the render's own passes show "
+                  "they pay). Needs --max-bounces 2 or more and no --cache-vertex")
       ->capture_default_str();
   cmd->add_flag("--adaptive", q.adaptive_on,
                 std::string("Adaptive sampling in frame-budget mode: extra samples where the "
@@ -116,7 +116,31 @@ QualityOptions resolve_quality(const QualityCli& q) {
     throw std::invalid_argument("--adaptive and --no-adaptive contradict each other");
   if (q.adaptive_on) o.adaptive = true;
   if (q.adaptive_off) o.adaptive = false;
+  parse_path_reuse(q.path_reuse, o);
   return o;
+}
+
+void parse_path_reuse(const std::string& value, QualityOptions& o) {
+  o.path_reuse_auto = value == "auto";
+  if (value == "off" || value == "0") {
+    o.path_reuse = 0;
+    return;
+  }
+  if (o.path_reuse_auto) {
+    o.path_reuse = QualityOptions::kReusePool;
+    return;
+  }
+  int pool = 0;
+  size_t used = 0;
+  try {
+    pool = std::stoi(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != value.size() || pool < 2 || pool > 64)
+    throw std::invalid_argument("bad --path-reuse '" + value +
+                                "': expected off, auto or a pool size from 2 to 64");
+  o.path_reuse = pool;
 }
 
 }  // namespace tuneray

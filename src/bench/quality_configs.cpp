@@ -19,15 +19,18 @@ void set_clamp(QualityOptions& o, const QualityBenchOptions& a) {
   o.clamp_relative = a.clamp > 0 ? 0.0f : a.clamp_relative;
 }
 
-// Path reuse's rows share second vertices in pools of this many pixels
-// (QualityOptions::path_reuse).
-constexpr int kBenchReusePool = 16;
+// Path reuse's rows share second vertices in pools of QualityOptions::kReusePool pixels, on in
+// every pass ("reuse") or where the render's own passes show it pays ("reuse-auto").
+void set_reuse(QualityOptions& o, bool automatic = false) {
+  o.path_reuse = QualityOptions::kReusePool;
+  o.path_reuse_auto = automatic;
+}
 
 void set_unbiased(QualitySwitches& s) {
   QualityOptions& o = s.quality;
   o.wavefront = o.sky_rgba = o.branchless_materials = o.adaptive = o.bsdf_sky = true;
   o.sampler = SamplerKind::kBlueNoise;
-  o.path_reuse = kBenchReusePool;
+  set_reuse(o);
   s.one_texel = true;
 }
 
@@ -47,9 +50,9 @@ using A = QualityBenchOptions;
 // material evaluation, PCG numbers, a constant sky sampled uniformly, uniform sampling); each row
 // switches one technique on; "unbiased" switches on every technique that leaves the expected image
 // alone, "defaults" is QualityOptions{} (what the renderer does unless told otherwise),
-// "defaults+denoise", "defaults+cache" and "defaults+reuse" are what turning the denoiser, the
-// radiance cache or path reuse on by default would give, "all" switches on every one (the cache
-// then switches path reuse off).
+// "defaults+denoise", "defaults+cache", "defaults+reuse" and "defaults+reuse-auto" are what
+// turning the denoiser, the radiance cache, path reuse or its automatic choice on by default
+// would give, "all" switches on every one (the cache then switches path reuse off).
 const std::vector<Config>& configurations() {
   static const std::vector<Config> configs = {
       {"baseline", [](S&, const A&) {}},
@@ -65,7 +68,8 @@ const std::vector<Config>& configurations() {
       {"clamp", [](S& s, const A& a) { set_clamp(s.quality, a); }},
       {"denoise", [](S& s, const A&) { s.quality.denoise = true; }},
       {"cache", [](S& s, const A&) { s.quality.cache.vertex = kBenchCacheVertex; }},
-      {"reuse", [](S& s, const A&) { s.quality.path_reuse = kBenchReusePool; }},
+      {"reuse", [](S& s, const A&) { set_reuse(s.quality); }},
+      {"reuse-auto", [](S& s, const A&) { set_reuse(s.quality, true); }},
       {"unbiased", [](S& s, const A&) { set_unbiased(s); }},
       {"defaults", [](S& s, const A&) { set_defaults(s); }},
       {"defaults+denoise",
@@ -81,7 +85,12 @@ const std::vector<Config>& configurations() {
       {"defaults+reuse",
        [](S& s, const A&) {
          set_defaults(s);
-         s.quality.path_reuse = kBenchReusePool;
+         set_reuse(s.quality);
+       }},
+      {"defaults+reuse-auto",
+       [](S& s, const A&) {
+         set_defaults(s);
+         set_reuse(s.quality, true);
        }},
       {"all",
        [](S& s, const A& a) {

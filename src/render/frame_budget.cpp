@@ -8,6 +8,14 @@
 
 namespace tuneray {
 
+FrameBudgetRenderer::FrameBudgetRenderer(TileRenderer& renderer, double frame_ms)
+    : renderer_(renderer),
+      frame_ms_(frame_ms),
+      reuse_auto_(renderer.settings().quality.path_reuse_auto &&
+                  renderer.integrator().reuse_pool_pixels() > 0) {
+  if (reuse_auto_) renderer_.set_path_reuse(false);
+}
+
 bool FrameBudgetRenderer::adaptive_ready() const {
   const QualityOptions& q = renderer_.settings().quality;
   return q.adaptive && uniform_samples_ >= static_cast<uint32_t>(std::max(2, q.adaptive_min_spp));
@@ -61,8 +69,33 @@ void FrameBudgetRenderer::PassCost::update(double per_spp, double overhead) {
 }
 
 double FrameBudgetRenderer::ms_per_spp() const {
-  return adaptive_ready() && adaptive_cost_.ms_per_spp > 0 ? adaptive_cost_.ms_per_spp
-                                                           : uniform_cost_.ms_per_spp;
+  const bool reuse = renderer_.reuse_pool() > 0;
+  const PassCost& adaptive = cost(true, reuse);
+  return adaptive_ready() && adaptive.ms_per_spp > 0 ? adaptive.ms_per_spp
+                                                     : cost(false, reuse).ms_per_spp;
+}
+
+double FrameBudgetRenderer::reuse_cost_ratio(bool adaptive) const {
+  for (bool phase : {adaptive, !adaptive}) {
+    const double off = cost(phase, false).ms_per_spp, on = cost(phase, true).ms_per_spp;
+    if (off > 0 && on > 0) return on / off;
+  }
+  return 0;
+}
+
+double FrameBudgetRenderer::plan_pass(bool adaptive, bool reuse, double left_ms) const {
+  // A pass costs a fixed overhead plus its samples; folding the overhead into the cost per
+  // sample would make small passes look expensive and plan ever smaller ones.
+  const PassCost& known = cost(adaptive, reuse);
+  if (known.ms_per_spp > 0) return (left_ms - known.overhead_ms) / known.ms_per_spp;
+  if (reuse) {  // guessed from the same phase without reuse, as a small pass
+    const double ratio = reuse_cost_ratio(adaptive);
+    const double without = plan_pass(adaptive, false, left_ms);
+    return std::min(kReuseProbePass, without / (ratio > 0 ? ratio : kReuseCostGuess));
+  }
+  if (adaptive && cost(false, false).ms_per_spp > 0)
+    return std::min(kAdaptiveProbePass, left_ms / cost(false, false).ms_per_spp);
+  return kFirstPass;
 }
 
 FrameResult FrameBudgetRenderer::render_frame(Film& film, double reserved_ms) {
@@ -78,18 +111,11 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film, double reserved_ms) {
   bool first_pass = true;
   for (;;) {
     const bool adaptive = adaptive_ready();
-    PassCost& cost = adaptive ? adaptive_cost_ : uniform_cost_;
-    // A pass costs a fixed overhead plus its samples; folding the overhead into the cost per
-    // sample would make small passes look expensive and plan ever smaller ones.
-    double fit;
-    if (cost.ms_per_spp > 0) {
-      fit = (render_ms - elapsed() - cost.overhead_ms) / cost.ms_per_spp;
-    } else if (adaptive && uniform_cost_.ms_per_spp > 0) {
-      double uniform_fit = (render_ms - elapsed()) / uniform_cost_.ms_per_spp;
-      fit = std::min(kAdaptiveProbePass, uniform_fit);
-    } else {
-      fit = kFirstPass;
-    }
+    const double film_spp = static_cast<double>(film_samples_) / pixels;
+    if (reuse_auto_) renderer_.set_path_reuse(reuse_switch_.next_on(film_spp));
+    const bool reuse = renderer_.reuse_pool() > 0;
+    double fit = plan_pass(adaptive, reuse, render_ms - elapsed());
+    if (reuse_auto_ && reuse && reuse_switch_.probing()) fit = std::min(fit, kReuseProbePass);
     // Every frame gets at least one pass, of at least the smallest size.
     if (fit < kSmallestPass) {
       if (!first_pass) break;
@@ -100,7 +126,12 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film, double reserved_ms) {
     double pass_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     double samples = std::max(1.0, static_cast<double>(pass.samples));
-    cost.update(pass.render_ms * pixels / samples, std::max(0.0, pass_ms - pass.render_ms));
+    cost(adaptive, reuse)
+        .update(pass.render_ms * pixels / samples, std::max(0.0, pass_ms - pass.render_ms));
+    film_samples_ += pass.samples;
+    if (reuse_auto_ && reuse)
+      reuse_switch_.after_reuse_pass(pass.reuse, static_cast<double>(film_samples_) / pixels,
+                                     reuse_cost_ratio(adaptive));
     frame.stats.accumulate(pass);
     first_pass = false;
   }

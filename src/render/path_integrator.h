@@ -17,6 +17,7 @@
 #include "render/radiance_cache.h"
 #include "render/render_settings.h"
 #include "render/sampler.h"
+#include "render/reuse_switch.h"
 #include "render/shading_geometry.h"
 #include "render/surface.h"
 #include "scene/scene.h"
@@ -31,6 +32,8 @@ struct PathCounters {
   uint64_t intersect_ns = 0;
   uint64_t shadow_ns = 0;
   uint64_t total_ns = 0;  // whole path work on this thread (shading = total - the two above)
+  uint64_t reused_samples = 0;  // pixel samples traced with path reuse
+  ReuseMoments reuse;           // what they tell of its worth (render/reuse_switch.h)
 };
 
 // The random numbers of a shading step, in the order a path's sampler hands them out. shade8

@@ -63,6 +63,14 @@ struct QualityOptions {
   // (render/path_reuse.h; 0 or 1 = off). Needs max_bounces and russian_roulette_depth >= 2 and
   // no radiance cache, else it is off.
   int path_reuse = 0;
+  // The pool `render --path-reuse auto` takes: 8 and 32 measured worse on the pathtracer's
+  // Cornell box (docs/quality.md, "Forty-ninth session").
+  static constexpr int kReusePool = 16;
+  // With path_reuse on: frame-budget rendering (render/frame_budget.h) turns reuse on or off per
+  // pass, as its own passes show it lowers the error per unit of time or not
+  // (render/reuse_switch.h); passes of a fixed sample count (render --spp, bench render, tune's
+  // frames, ground truths) trace without it.
+  bool path_reuse_auto = false;
 
   bool biased() const {
     return lowres_sky || regularize || clamp > 0 || clamp_relative > 0 || denoise ||

@@ -51,11 +51,25 @@ PassStats combine(tbb::combinable<PathCounters>& counters, double render_ms, uin
     intersect += c.intersect_ns;
     shadow += c.shadow_ns;
     total += c.total_ns;
+    stats.reused_samples += c.reused_samples;
+    stats.reuse.add(c.reuse);
   });
   stats.intersect_ms = intersect * 1e-6;
   stats.shadow_ms = shadow * 1e-6;
   stats.shading_ms = total > intersect + shadow ? (total - intersect - shadow) * 1e-6 : 0.0;
   return stats;
+}
+
+// A sample's part of ReuseMoments, before it is added to its pixel (whose mean is then
+// independent of it).
+void add_reuse_moments(const Film& film, int x, int y, Color own, Color reused, ReuseMoments& m) {
+  const uint32_t n = film.samples(x, y);
+  if (n == 0) return;
+  const Color mean = film.sum(x, y) / static_cast<float>(n);
+  m.own2 += dot(own, own);
+  m.reused2 += dot(reused, reused);
+  m.cross += dot(own, mean);
+  ++m.samples;
 }
 
 }  // namespace
@@ -82,6 +96,7 @@ struct TileRenderer::WaveBuffers {
   // the pools have been gathered; the pools.
   std::vector<ReuseVertices> reuse;
   std::vector<Color> indirect, camera;
+  std::vector<Color> own_indirect, own;  // per slot: the path's own estimate, for ReuseMoments
   std::vector<uint32_t> pool_slots, pool_begin;
   PathReuseScratch reuse_scratch;
 };
@@ -99,6 +114,8 @@ void PassStats::accumulate(const PassStats& o) {
   intersect_ms += o.intersect_ms;
   shading_ms += o.shading_ms;
   shadow_ms += o.shadow_ms;
+  reused_samples += o.reused_samples;
+  reuse.add(o.reuse);
 }
 
 TileRenderer::TileRenderer(const Scene& scene, const Accel& accel, const CameraDesc& camera,
@@ -108,6 +125,7 @@ TileRenderer::TileRenderer(const Scene& scene, const Accel& accel, const CameraD
       camera_(camera, settings.width, settings.height),
       integrator_(scene, accel, settings),
       prototype_(prototype),
+      reuse_on_(!settings.quality.path_reuse_auto),
       wave_pool_(std::make_unique<WavePool>()) {
   const std::vector<uint32_t> order = wave_pixel_order(settings.width, settings.height);
   const uint32_t width = static_cast<uint32_t>(std::max(1, settings.width));
@@ -182,7 +200,7 @@ void TileRenderer::start_paths(WaveBuffers& b, const ClampThresholds& clamp) con
   const size_t padded = (paths + 7) / 8 * 8;
   if (!b.samplers) b.samplers = prototype_.make_bank();
   b.wave.with_cache = cache_ != nullptr;
-  if (integrator_.reuse_pool_pixels() > 0) {
+  if (reuse_pool() > 0) {
     b.reuse.assign(paths, ReuseVertices{});
     b.indirect.resize(paths);
     b.camera.resize(paths);
@@ -333,25 +351,35 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
 }
 
 void TileRenderer::reuse_and_finish(WaveBuffers& b, PathCounters& local) const {
-  reuse_pools(b.ids, integrator_.reuse_pool_pixels(), b.pool_slots, b.pool_begin);
+  reuse_pools(b.ids, reuse_pool(), b.pool_slots, b.pool_begin);
+  b.own_indirect.assign(b.indirect.begin(), b.indirect.end());
   const uint64_t t0 = settings_.quality.profile_phases ? now_ns() : 0;
   local.shadow_rays += reuse_paths(integrator_.accel(), b.pool_slots, b.pool_begin, b.reuse,
                                    b.indirect, b.reuse_scratch);
   if (settings_.quality.profile_phases) local.shadow_ns += now_ns() - t0;
-  for (size_t slot = 0; slot < b.ids.size(); ++slot)
+  b.own.resize(b.ids.size());
+  PathCounters own_counters;  // the own estimates are not added: their invalid ones do not count
+  for (size_t slot = 0; slot < b.ids.size(); ++slot) {
     b.result[slot] = integrator_.finish(b.indirect[slot], b.camera[slot], local, b.clamp[slot]);
+    b.own[slot] =
+        integrator_.finish(b.own_indirect[slot], b.camera[slot], own_counters, b.clamp[slot]);
+  }
 }
 
-void TileRenderer::add_to_film(const WaveBuffers& b, Film& film) const {
+void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, PathCounters& local) const {
   // Each pixel's samples are consecutive slots, in index order, as a lone path loop adds them;
   // each goes straight to the film (its record is in the cache after the first).
   // Film lines are asked for this many samples ahead (a few pixels at any spp).
   constexpr size_t kAhead = 32;
+  const bool reused = b.wave.reuse != nullptr;
   for (size_t k = 0; k < b.ids.size(); ++k) {
     if (k + kAhead < b.ids.size()) film.prefetch(b.ids[k + kAhead].x, b.ids[k + kAhead].y);
     const PixelSampleId& id = b.ids[k];
-    film.add_sample(static_cast<int>(id.x), static_cast<int>(id.y), b.result[k], id.index);
+    const int x = static_cast<int>(id.x), y = static_cast<int>(id.y);
+    if (reused) add_reuse_moments(film, x, y, b.own[k], b.result[k], local.reuse);
+    film.add_sample(x, y, b.result[k], id.index);
   }
+  if (reused) local.reused_samples += b.ids.size();
 }
 
 PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
@@ -386,7 +414,7 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
           if (!b.ids.empty()) {
             start_paths(b, clamp);
             trace_paths(b, false, local);
-            add_to_film(b, film);
+            add_to_film(b, film, local);
             local_samples += b.ids.size();
           }
           if (profile) local.total_ns += now_ns() - t0;
@@ -419,7 +447,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
         spp == 0 ? std::max<size_t>(1, pixel_count) : std::max<size_t>(1, batch / spp);
     // Path reuse's pools are runs of pixels: chunks of whole pools keep them, so the image
     // does not depend on the batch size.
-    const size_t pool = static_cast<size_t>(std::max(1, integrator_.reuse_pool_pixels()));
+    const size_t pool = static_cast<size_t>(std::max(1, reuse_pool()));
     const size_t chunk_pixels = (per_chunk + pool - 1) / pool * pool;
     for (size_t k = chunk_pixels; k < pixel_count; k += chunk_pixels) chunk_begin.push_back(k);
     total_samples = static_cast<uint64_t>(spp) * pixel_count;
@@ -460,7 +488,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                         if (!b.ids.empty()) {
                           start_paths(b, clamp);
                           trace_paths(b, true, local);
-                          add_to_film(b, film);
+                          add_to_film(b, film, local);
                         }
                         if (profile) local.total_ns += now_ns() - t_chunk;
                       }

@@ -33,6 +33,9 @@ struct PassStats {
   uint64_t samples = 0;  // pixel samples taken
   // Phase times summed over threads (ms), when quality.profile_phases is on.
   double intersect_ms = 0, shading_ms = 0, shadow_ms = 0;
+  // Of the samples traced with path reuse: how many, and what they tell of its worth.
+  uint64_t reused_samples = 0;
+  ReuseMoments reuse;
   double mrays_per_s() const {
     return render_ms > 0 ? static_cast<double>(rays + shadow_rays) / (render_ms * 1e3) : 0.0;
   }
@@ -68,6 +71,12 @@ class TileRenderer {
     settings_.tile_size = tile_size;
     settings_.quality.batch_size = batch_size;
   }
+  // Path reuse on or off for the passes to come (when the settings allow it at all: see
+  // PathIntegrator::reuse_pool_pixels). On from the start unless quality.path_reuse_auto, which
+  // leaves it to frame-budget rendering to switch (render/frame_budget.h).
+  void set_path_reuse(bool on) { reuse_on_ = on; }
+  // Pixels per path-reuse pool of the next pass; 0 = it traces without reuse.
+  int reuse_pool() const { return reuse_on_ ? integrator_.reuse_pool_pixels() : 0; }
 
   // The firefly clamp of the next pass into `film`: quality.clamp everywhere if set, else
   // quality.clamp_relative thresholds from the film (none on an empty film), else none.
@@ -104,7 +113,7 @@ class TileRenderer {
   // to the film, each pixel's samples in index order.
   void start_paths(WaveBuffers& b, const ClampThresholds& clamp) const;
   void trace_paths(WaveBuffers& b, bool batched, PathCounters& counters) const;
-  void add_to_film(const WaveBuffers& b, Film& film) const;
+  void add_to_film(const WaveBuffers& b, Film& film, PathCounters& counters) const;
   // Path reuse: the wave's pools gathered (path_reuse.h), then every path's value taken.
   void reuse_and_finish(WaveBuffers& b, PathCounters& counters) const;
 
@@ -113,6 +122,7 @@ class TileRenderer {
   Camera camera_;
   PathIntegrator integrator_;
   const Sampler& prototype_;
+  bool reuse_on_;
   struct WavePool;
   std::unique_ptr<WavePool> wave_pool_;  // per-thread wavefront buffers, kept between passes
   // QualityOptions::cache: read by the paths of a pass, trained between passes with the

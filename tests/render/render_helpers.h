@@ -6,6 +6,7 @@
 #include "render/film.h"
 #include "render/sampler.h"
 #include "render/tile_renderer.h"
+#include "scene/builtins.h"
 #include "scene/scene.h"
 
 namespace tuneray::testing {
@@ -50,6 +51,22 @@ inline Image render_in_passes(const Scene& scene, const RenderSettings& settings
     *cache_cells = cache ? cache->cells() : 0;
   }
   return film.resolve();
+}
+
+// The built-in Cornell box lit as Embree's pathtracer lights its own (bench peers): every
+// surface Lambertian, no emitter, a point light below the ceiling. All of the noise is then in
+// the walks beyond the first hit, where path reuse pays most.
+inline Scene point_lit_box() {
+  Scene scene = make_cornell_scene();
+  for (Material& m : scene.materials) {
+    m.type = MaterialType::kLambert;
+    m.emission = Color(0.0f);
+  }
+  const BBox b = scene.bounds();
+  const Vec3f centre = (b.lo + b.hi) * 0.5f, extent = b.hi - b.lo;
+  scene.point_lights = {
+      {Vec3f(centre.x, b.hi.y - 0.1f * extent.y, centre.z), Color(0.5f * extent.y * extent.y)}};
+  return scene;
 }
 
 }  // namespace tuneray::testing

@@ -144,22 +144,6 @@ TEST(PathReuse, InvalidWalksAndOtherPathsAreLeftAlone) {
   EXPECT_EQ(out[2], indirect[2]);
 }
 
-// The built-in Cornell box lit as Embree's pathtracer lights its own (bench peers): every
-// surface Lambertian, no emitter, a point light below the ceiling. All of the noise is then in
-// the walks beyond the first hit.
-Scene point_lit_box() {
-  Scene scene = make_cornell_scene();
-  for (Material& m : scene.materials) {
-    m.type = MaterialType::kLambert;
-    m.emission = Color(0.0f);
-  }
-  const BBox b = scene.bounds();
-  const Vec3f centre = (b.lo + b.hi) * 0.5f, extent = b.hi - b.lo;
-  scene.point_lights = {
-      {Vec3f(centre.x, b.hi.y - 0.1f * extent.y, centre.z), Color(0.5f * extent.y * extent.y)}};
-  return scene;
-}
-
 // A small image, eight bounces, the PCG sampler.
 RenderSettings box_settings(int reuse) {
   RenderSettings s;
@@ -182,7 +166,7 @@ double mse_between(const Image& a, const Image& b) {
 }
 
 TEST(PathReuse, RendersTheSameImageWithLessNoise) {
-  const Scene scene = point_lit_box();
+  const Scene scene = testing::point_lit_box();
   RenderSettings truth_settings = box_settings(0);
   truth_settings.seed = 99;
   const Image truth = testing::render_image(scene, truth_settings, 1024);

@@ -1,0 +1,171 @@
+// The automatic path-reuse choice (render/reuse_switch.h): the decision rule on made-up moments,
+// the moments of real passes against the films' own variance estimates, and the wiring into
+// fixed-count and frame-budget rendering.
+#include <gtest/gtest.h>
+
+#include "render/frame_budget.h"
+#include "render/reuse_switch.h"
+#include "render_helpers.h"
+
+namespace tuneray {
+namespace {
+
+// Moments of `samples` samples whose variances per sample are `own` and `reused` (mean 0).
+ReuseMoments moments(double own, double reused, uint64_t samples) {
+  ReuseMoments m;
+  m.samples = samples;
+  m.own2 = own * static_cast<double>(samples);
+  m.reused2 = reused * static_cast<double>(samples);
+  return m;
+}
+
+TEST(ReuseSwitch, MomentsGiveTheVariancesAroundTheMean) {
+  ReuseMoments m;
+  m.samples = 4;
+  m.own2 = 20;  // E|own|^2 = 5
+  m.reused2 = 12;
+  m.cross = 8;  // |mu|^2 = 2
+  EXPECT_DOUBLE_EQ(m.own_variance(), 3.0);
+  EXPECT_DOUBLE_EQ(m.reused_variance(), 1.0);
+  m.add(m);
+  EXPECT_EQ(m.samples, 8u);
+  EXPECT_DOUBLE_EQ(m.own_variance(), 3.0);
+  EXPECT_DOUBLE_EQ(ReuseMoments{}.own_variance(), 0.0);
+}
+
+TEST(ReuseSwitch, ProbesOnceTheFilmHasASamplePerPixel) {
+  ReuseSwitch s;
+  EXPECT_FALSE(s.next_on(0.0));
+  EXPECT_FALSE(s.next_on(0.99));
+  EXPECT_TRUE(s.next_on(1.0));
+  EXPECT_TRUE(s.probing());
+}
+
+TEST(ReuseSwitch, OnWhereTheVarianceFallsMoreThanTheCostRises) {
+  // Variance 0.4 of 1 at twice the cost: 0.8 of the squared error per unit of time.
+  ReuseSwitch s;
+  s.after_reuse_pass(moments(1.0, 0.4, 10000), 1.5, 2.0);
+  EXPECT_TRUE(s.on());
+  EXPECT_FALSE(s.probing());
+  EXPECT_TRUE(s.next_on(1.5));
+  // Later passes may show otherwise: the same moments again at three times the cost.
+  s.after_reuse_pass(moments(1.0, 0.4, 10000), 3.0, 3.0);
+  EXPECT_FALSE(s.on());
+}
+
+TEST(ReuseSwitch, OffWhereItDoesNotPayAndProbedAgainWhenTheSamplesDouble) {
+  ReuseSwitch s;
+  s.after_reuse_pass(moments(1.0, 0.4, 10000), 3.0, 3.0);  // 1.2 of the error per time
+  EXPECT_FALSE(s.on());
+  EXPECT_FALSE(s.next_on(5.9));
+  EXPECT_TRUE(s.next_on(6.0));
+  // Nothing gained (no diffuse first hits) at a cost within noise of none: stays off.
+  ReuseSwitch level;
+  level.after_reuse_pass(moments(1.0, 1.0, 10000), 2.0, 0.97);
+  EXPECT_FALSE(level.on());
+}
+
+TEST(ReuseSwitch, UndecidedUntilItHasEnoughSamplesAndBothCosts) {
+  ReuseSwitch s;
+  s.after_reuse_pass(moments(1.0, 0.1, ReuseSwitch::kMinSamples - 1), 1.2, 2.0);
+  EXPECT_FALSE(s.on());
+  EXPECT_TRUE(s.next_on(1.2));  // probes again at once
+  s.after_reuse_pass(moments(1.0, 0.1, 1), 1.4, 0.0);  // enough samples, no cost ratio yet
+  EXPECT_FALSE(s.on());
+  EXPECT_TRUE(s.next_on(1.4));
+  s.after_reuse_pass(moments(1.0, 0.1, 1), 1.6, 2.0);
+  EXPECT_TRUE(s.on());
+}
+
+RenderSettings box_settings() {
+  RenderSettings s;
+  s.width = 40;
+  s.height = 30;
+  s.max_bounces = 8;
+  s.seed = 3;
+  s.quality.path_reuse = QualityOptions::kReusePool;
+  return s;
+}
+
+// Mean over pixels of the variance of one sample, r, g and b summed, as the film estimates it.
+double film_sample_variance(const Film& film) {
+  double sum = 0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x)
+      sum += 3.0 * film.variance_of_mean(x, y) * film.samples(x, y);
+  return sum / (film.width() * film.height());
+}
+
+TEST(ReuseSwitch, PassMomentsAgreeWithEachFilmsVariance) {
+  // The moments of reuse passes against two independent estimates: the variance among each
+  // pixel's samples of a film rendered with reuse, and of one rendered without it from the same
+  // random numbers (whose samples are the reuse passes' own estimates).
+  const Scene scene = testing::point_lit_box();
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  RenderSettings off_settings = box_settings();
+  off_settings.quality.path_reuse = 0;
+  const PcgSampler sampler(7);
+  TileRenderer with(scene, accel, scene.cameras.at(0), box_settings(), sampler);
+  TileRenderer without(scene, accel, scene.cameras.at(0), off_settings, sampler);
+  Film reused(40, 30), plain(40, 30);
+  ReuseMoments m;
+  uint64_t reused_samples = 0;
+  for (uint32_t i = 0; i < 48; ++i) {
+    const PassStats pass = with.render_pass(reused, i, 1);
+    m.add(pass.reuse);
+    reused_samples += pass.reused_samples;
+    EXPECT_EQ(without.render_pass(plain, i, 1).reused_samples, 0u);
+  }
+  EXPECT_EQ(reused_samples, 48u * 40 * 30);
+  EXPECT_EQ(m.samples, 47u * 40 * 30);  // the first pass's pixels had no mean before
+  EXPECT_NEAR(m.own_variance() / film_sample_variance(plain), 1.0, 0.1);
+  EXPECT_NEAR(m.reused_variance() / film_sample_variance(reused), 1.0, 0.1);
+  EXPECT_LT(m.reused_variance(), 0.6 * m.own_variance());
+}
+
+TEST(ReuseSwitch, FixedSampleCountsTraceWithoutReuse) {
+  const Scene scene = testing::point_lit_box();
+  RenderSettings automatic = box_settings(), off = box_settings();
+  automatic.quality.path_reuse_auto = true;
+  off.quality.path_reuse = 0;
+  PassStats stats;
+  const Image a = testing::render_image(scene, automatic, 4, &stats);
+  const Image b = testing::render_image(scene, off, 4);
+  EXPECT_EQ(stats.reused_samples, 0u);
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) ASSERT_EQ(a.at(x, y), b.at(x, y)) << x << " " << y;
+}
+
+TEST(ReuseSwitch, FrameBudgetRenderingProbesAndDecides) {
+  const Scene scene = testing::point_lit_box();
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  for (const int bounces : {8, 1}) {
+    RenderSettings s = box_settings();
+    s.max_bounces = bounces;
+    s.quality.path_reuse_auto = true;
+    const PcgSampler sampler(5);
+    TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
+    Film film(s.width, s.height);
+    FrameBudgetRenderer budget(renderer, 5.0);
+    EXPECT_EQ(budget.reuse_auto(), bounces > 1) << bounces;  // one bounce: nothing to share
+    PassStats total;
+    for (int frame = 0; frame < 200 && total.samples < 8u * 40 * 30; ++frame)
+      total.accumulate(budget.render_frame(film).stats);
+    if (bounces == 1) {
+      EXPECT_EQ(total.reused_samples, 0u);
+      continue;
+    }
+    // At least one probe of a film that had a sample per pixel; its moments are the switch's.
+    EXPECT_GT(total.reused_samples, 0u);
+    EXPECT_LT(total.reused_samples, total.samples);  // never before the first sample per pixel
+    EXPECT_EQ(budget.reuse_switch().moments().samples, total.reuse.samples);
+    EXPECT_GT(total.reuse.samples, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace tuneray
