@@ -159,9 +159,10 @@ CommandAction add_bench_command(CLI::App& app) {
       ->capture_default_str();
   p->add_flag("!--no-denoise", peers->denoise, "Skip the runs with the denoiser");
   add_radiance_cache_options(p, peers->cache);  // vertex 0: no cached columns
-  p->add_option("--path-reuse", peers->path_reuse,
-                "Also runs with path reuse in pools of this many pixels (0: no reused columns)")
-      ->check(CLI::Range(0, 64))
+  auto peers_reuse = std::make_shared<std::string>(std::to_string(peers->path_reuse));
+  p->add_option("--path-reuse", *peers_reuse,
+                "Also runs with path reuse: in pools of N = 2..64 pixels, auto (pools of 16 where "
+                "the runs' own passes show they pay), or off (0: no reused columns)")
       ->capture_default_str();
   p->add_option("--json", *peers_json, "Write results as JSON");
 
@@ -173,6 +174,10 @@ CommandAction add_bench_command(CLI::App& app) {
     }
     if (p->parsed()) {
       std::tie(peers->peer.width, peers->peer.height) = parse_size(*peers_size);
+      QualityOptions reuse;
+      parse_path_reuse(*peers_reuse, reuse);
+      peers->path_reuse = reuse.path_reuse;
+      peers->path_reuse_auto = reuse.path_reuse_auto;
       return run_bench_peers(*peers, *peers_json);
     }
     if (r->parsed()) {

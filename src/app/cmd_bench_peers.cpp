@@ -51,8 +51,9 @@ void print_result(const PeersBenchOptions& o, const PeersResult& r) {
                o.cache.vertex);
   if (o.path_reuse > 0)
     fmt::print(
-        "Reused: the same runs with path reuse in pools of {} pixels (--path-reuse; unbiased).\n",
-        o.path_reuse);
+        "Reused: the same runs with path reuse in pools of {} pixels (--path-reuse{}; "
+        "unbiased).\n",
+        o.path_reuse, o.path_reuse_auto ? " auto: where the runs' own passes show it pays" : "");
   fmt::print("\nAs measured against tuneray's reference (its noise included):\n");
   fmt::print("{:>7} {:>11} {:>11} {:>11} {:>12}", "time s", "tuneray", "tuneray 8b", "ratio raw",
              "ratio 8-bit");
@@ -89,6 +90,7 @@ nlohmann::json to_json(const PeersBenchOptions& o, const PeersResult& r) {
                       {"cache_cell", o.cache.cell},
                       {"cache_train", o.cache.train},
                       {"path_reuse", o.path_reuse},
+                      {"path_reuse_auto", o.path_reuse_auto},
                       {"skipped", r.skipped}};
   if (r.skipped) {
     j["reason"] = r.reason;

@@ -218,7 +218,7 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
     if (o.path_reuse > 0) {
       RenderSettings with_reuse = settings;
       with_reuse.quality.path_reuse = o.path_reuse;
-      with_reuse.quality.path_reuse_auto = false;
+      with_reuse.quality.path_reuse_auto = o.path_reuse_auto;
       add_column(with_reuse, reused, reused_ldr);
     }
     say(fmt::format("repeat {}/{} done", r + 1, o.repeats));

@@ -28,6 +28,7 @@ struct PeersBenchOptions {
   RadianceCacheOptions cache = {.vertex = 1};
   // Also our runs with path reuse in pools of this many pixels (0: not run; unbiased).
   int path_reuse = 16;
+  bool path_reuse_auto = false;  // ... switched per pass (QualityOptions::path_reuse_auto)
 };
 
 // Throws std::invalid_argument naming the first option out of range.

@@ -10,25 +10,46 @@
 
 #include <cstdint>
 
+#include "math/vec.h"
+#include "render/film.h"
+
 namespace tuneray {
 
-// Sums over the samples of passes traced with reuse, r, g and b added as the RMSE adds them:
-// own2 of |own|^2, reused2 of |reused|^2 and cross of own . m, m the pixel's mean before the
-// sample (from earlier samples, so independent of it: E[own . m] = |mu|^2). Per sample,
-// E[|own|^2] - |mu|^2 is the variance of a sample without reuse, E[|reused|^2] - |mu|^2 with it.
+// What the samples of passes traced with reuse tell of its worth, r, g and b added as the RMSE
+// adds them. Each sample's own estimate and reused one are compared by their deviations d from
+// the pixel's mean m of earlier samples (independent of both): E|d|^2 = v + Var(m), so the
+// difference of the two estimates' E|d|^2 is exactly the variance reuse removes, and
+// E|d_own|^2 n / (n + 1), n earlier samples, estimates v_own (taking Var(m) as v_own / n).
+// Deviations are clipped at `clip` (a few times the image's mean pixel length): what both
+// estimates share and reuse cannot touch, a light's rim seen directly or a light sample's 1/r^2
+// near the light, would otherwise be nearly all of both variances (on the Cornell box 90 % of
+// them) and hide what reuse removes from the rest of the image.
+//
+// Each sample is weighted by 1 / n: an image's squared error is the sum over pixels of v / n,
+// and adaptive sampling gives the pixels of high variance (a light's rim, seen directly, whose
+// variance no reuse touches) many samples, so per sample they matter less than their variance
+// says.
 struct ReuseMoments {
-  double own2 = 0, reused2 = 0, cross = 0;
+  double own = 0;        // sum of |d_own|^2 n / (n + 1) / n
+  double removed = 0;    // sum of (|d_own|^2 - |d_reused|^2) / n
+  double weights = 0;    // sum of 1 / n
   uint64_t samples = 0;  // those whose pixel had a sample before
+  // Deviations are clipped at this many times the image's mean pixel length.
+  static constexpr float kClip = 8;
+  // The clip length for an image of this mean pixel length (none for a black one).
+  static float clip_length(double mean_pixel_length);
+  // One sample of pixel (x, y), before it is added to the film.
+  void add_sample(const Film& film, int x, int y, Color own_estimate, Color reused_estimate,
+                  float clip);
   void add(const ReuseMoments& o) {
-    own2 += o.own2;
-    reused2 += o.reused2;
-    cross += o.cross;
+    own += o.own;
+    removed += o.removed;
+    weights += o.weights;
     samples += o.samples;
   }
-  double own_variance() const { return samples ? (own2 - cross) / static_cast<double>(samples) : 0; }
-  double reused_variance() const {
-    return samples ? (reused2 - cross) / static_cast<double>(samples) : 0;
-  }
+  // Weighted means of the variance of one sample without and with reuse.
+  double own_variance() const { return weights > 0 ? own / weights : 0; }
+  double reused_variance() const { return weights > 0 ? (own - removed) / weights : 0; }
 };
 
 // The decision, pass by pass. Reuse pays where it gives the lower error per unit of time: at

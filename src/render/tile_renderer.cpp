@@ -60,18 +60,6 @@ PassStats combine(tbb::combinable<PathCounters>& counters, double render_ms, uin
   return stats;
 }
 
-// A sample's part of ReuseMoments, before it is added to its pixel (whose mean is then
-// independent of it).
-void add_reuse_moments(const Film& film, int x, int y, Color own, Color reused, ReuseMoments& m) {
-  const uint32_t n = film.samples(x, y);
-  if (n == 0) return;
-  const Color mean = film.sum(x, y) / static_cast<float>(n);
-  m.own2 += dot(own, own);
-  m.reused2 += dot(reused, reused);
-  m.cross += dot(own, mean);
-  ++m.samples;
-}
-
 }  // namespace
 
 // What a worker keeps between chunks and passes: its path slots' samplers, the wave of paths,
@@ -183,13 +171,15 @@ PassStats TileRenderer::run(Film& film, const PixelWork& work,
   // Resolved once per pass, before any pixel of it is written, so the result does not depend
   // on the order in which threads finish.
   const ClampThresholds clamp = clamp_for(film);
+  PixelWork pass = work;
+  if (reuse_pool() > 0) pass.reuse_clip = ReuseMoments::clip_length(film.mean_value_length());
   PassStats stats;
   if (settings_.quality.wavefront) {
-    stats = run_wavefront(film, work, clamp);
+    stats = run_wavefront(film, pass, clamp);
     if (on_tile_done)
       for (int i = 0; i < tile_count(); ++i) on_tile_done();
   } else {
-    stats = run_tiles(film, work, clamp, on_tile_done);
+    stats = run_tiles(film, pass, clamp, on_tile_done);
   }
   train_cache();
   return stats;
@@ -366,7 +356,8 @@ void TileRenderer::reuse_and_finish(WaveBuffers& b, PathCounters& local) const {
   }
 }
 
-void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, PathCounters& local) const {
+void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, float reuse_clip,
+                               PathCounters& local) const {
   // Each pixel's samples are consecutive slots, in index order, as a lone path loop adds them;
   // each goes straight to the film (its record is in the cache after the first).
   // Film lines are asked for this many samples ahead (a few pixels at any spp).
@@ -376,7 +367,7 @@ void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, PathCounters& l
     if (k + kAhead < b.ids.size()) film.prefetch(b.ids[k + kAhead].x, b.ids[k + kAhead].y);
     const PixelSampleId& id = b.ids[k];
     const int x = static_cast<int>(id.x), y = static_cast<int>(id.y);
-    if (reused) add_reuse_moments(film, x, y, b.own[k], b.result[k], local.reuse);
+    if (reused) local.reuse.add_sample(film, x, y, b.own[k], b.result[k], reuse_clip);
     film.add_sample(x, y, b.result[k], id.index);
   }
   if (reused) local.reused_samples += b.ids.size();
@@ -414,7 +405,7 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
           if (!b.ids.empty()) {
             start_paths(b, clamp);
             trace_paths(b, false, local);
-            add_to_film(b, film, local);
+            add_to_film(b, film, work.reuse_clip, local);
             local_samples += b.ids.size();
           }
           if (profile) local.total_ns += now_ns() - t0;
@@ -488,7 +479,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                         if (!b.ids.empty()) {
                           start_paths(b, clamp);
                           trace_paths(b, true, local);
-                          add_to_film(b, film, local);
+                          add_to_film(b, film, work.reuse_clip, local);
                         }
                         if (profile) local.total_ns += now_ns() - t_chunk;
                       }
