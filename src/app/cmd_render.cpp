@@ -100,8 +100,8 @@ int run_render(const RenderArgs& a) {
       FrameResult frame = budget.render_frame(film);
       total.accumulate(frame.stats);
       // Of the frame's samples, those traced with path reuse (all or none unless it is auto).
-      const double reused_spp = static_cast<double>(frame.stats.reused_samples) /
-                                (static_cast<double>(width) * height);
+      const double reused_spp =
+          static_cast<double>(frame.stats.reused_samples) / (static_cast<double>(width) * height);
       frames.push_back(
           {{"frame", f}, {"ms", frame.ms}, {"spp", frame.spp}, {"reused_spp", reused_spp}});
       if (!a.quiet)

@@ -19,10 +19,10 @@ struct QualityCli {
   std::string sky_sampling = options.bsdf_sky ? "bsdf" : "uniform";
   bool adaptive_on = false, adaptive_off = false;  // --adaptive / --no-adaptive given
   // --path-reuse: off, auto or a pool size (QualityOptions::path_reuse and path_reuse_auto).
-  std::string path_reuse = options.path_reuse < 2 ? "off"
+  std::string path_reuse = options.path_reuse < 2    ? "off"
                            : options.path_reuse_auto ? "auto"
                                                      : std::to_string(options.path_reuse);
-  bool one_texel = true;                           // collapse one-texel textures at load time
+  bool one_texel = true;  // collapse one-texel textures at load time
 };
 
 void add_quality_options(CLI::App* cmd, QualityCli& q);

@@ -88,13 +88,14 @@ double FrameBudgetRenderer::plan_pass(bool adaptive, bool reuse, double left_ms)
   // sample would make small passes look expensive and plan ever smaller ones.
   const PassCost& known = cost(adaptive, reuse);
   if (known.ms_per_spp > 0) return (left_ms - known.overhead_ms) / known.ms_per_spp;
-  if (reuse) {  // guessed from the same phase without reuse, as a small pass
+  if (reuse && cost(adaptive, false).ms_per_spp > 0) {
+    // Guessed from the same phase without reuse, as a small pass.
     const double ratio = reuse_cost_ratio(adaptive);
     const double without = plan_pass(adaptive, false, left_ms);
     return std::min(kReuseProbePass, without / (ratio > 0 ? ratio : kReuseCostGuess));
   }
-  if (adaptive && cost(false, false).ms_per_spp > 0)
-    return std::min(kAdaptiveProbePass, left_ms / cost(false, false).ms_per_spp);
+  if (adaptive && cost(false, reuse).ms_per_spp > 0)
+    return std::min(kAdaptiveProbePass, left_ms / cost(false, reuse).ms_per_spp);
   return kFirstPass;
 }
 

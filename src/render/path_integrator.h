@@ -16,8 +16,8 @@
 #include "render/path_wave.h"
 #include "render/radiance_cache.h"
 #include "render/render_settings.h"
-#include "render/sampler.h"
 #include "render/reuse_switch.h"
+#include "render/sampler.h"
 #include "render/shading_geometry.h"
 #include "render/surface.h"
 #include "scene/scene.h"
@@ -31,7 +31,7 @@ struct PathCounters {
   // Phase clocks (steady_clock nanoseconds), only filled when quality.profile_phases is on.
   uint64_t intersect_ns = 0;
   uint64_t shadow_ns = 0;
-  uint64_t total_ns = 0;  // whole path work on this thread (shading = total - the two above)
+  uint64_t total_ns = 0;        // whole path work on this thread (shading = total - the two above)
   uint64_t reused_samples = 0;  // pixel samples traced with path reuse
   ReuseMoments reuse;           // what they tell of its worth (render/reuse_switch.h)
 };

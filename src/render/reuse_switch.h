@@ -4,8 +4,8 @@
 // own light sample; docs/quality.md). Which one a view is, the renderer can measure: a pass with
 // reuse gives, for every sample, both the value it adds (the pool's estimate) and the value the
 // same random numbers give without reuse (the path's own walk). Both are unbiased estimates of
-// the same pixel, so the difference of their second moments is the variance reuse removes, and
-// the passes' times give what it costs.
+// the same pixel, so the difference of their second moments about the pixel's mean is the
+// variance reuse removes, and the passes' times give what it costs.
 #pragma once
 
 #include <cstdint>
@@ -54,8 +54,9 @@ struct ReuseMoments {
 
 // The decision, pass by pass. Reuse pays where it gives the lower error per unit of time: at
 // cost c (ms per spp) and variance v per sample the squared error of a time budget goes as
-// c x v, so on iff c_on x v_reused < (1 - kMinGain) x c_off x v_own. It needs both costs, so passes run without reuse first;
-// from a film with a sample per pixel on, a probe pass runs with it. Then reuse stays on while
+// c x v, so on iff c_on x v_reused < (1 - kMinGain) x c_off x v_own. It needs both costs, so
+// passes run without reuse first; from a film with a sample per pixel on, a probe pass runs with
+// it. Then reuse stays on while
 // it pays (each of its passes adds moments); once it does not, it is off and is probed again
 // each time the film's samples per pixel have doubled (so probes cost a vanishing share of a
 // long render, and a decision taken on few samples is revisited).

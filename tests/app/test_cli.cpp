@@ -89,6 +89,35 @@ TEST_F(Cli, FrameBudgetRenderReportsEveryFrame) {
   EXPECT_NE(text.find("\"frame\": 2"), std::string::npos) << text;
 }
 
+TEST_F(Cli, PathReuseTakesAPoolOffOrAuto) {
+  // Forced on, every frame's samples are traced with reuse; auto reports how many were.
+  for (const std::string& reuse : {std::string("16"), std::string("auto")}) {
+    const std::string report = path("r" + reuse + ".json");
+    CommandResult r =
+        run_tuneray({"render", "cornell", "--size", "16x12", "--frame-ms", "5", "--frames", "3",
+                     "--path-reuse", reuse, "--out", path("r.exr"), "--report", report, "--quiet"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream f(report);
+    const nlohmann::json j = nlohmann::json::parse(f);
+    ASSERT_EQ(j["frames"].size(), 3u) << j.dump(2);
+    for (const auto& frame : j["frames"]) {
+      const double reused = frame["reused_spp"].get<double>(), spp = frame["spp"].get<double>();
+      if (reuse == "16") {
+        EXPECT_DOUBLE_EQ(reused, spp) << j.dump(2);
+      }
+      EXPECT_LE(reused, spp) << j.dump(2);
+    }
+  }
+  for (const char* bad : {"1", "65", "-2", "16x", "sometimes"}) {
+    CommandResult r = run_tuneray({"render", "cornell", "--size", "16x12", "--spp", "1",
+                                   "--path-reuse", bad, "--out", path("b.exr")});
+    EXPECT_FALSE(r.signaled) << r.output;
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.output.find("--path-reuse"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(bad), std::string::npos) << r.output;
+  }
+}
+
 TEST_F(Cli, PhaseProfileSplitsTheRenderTime) {
   std::string report = path("p.json");
   CommandResult r = run_tuneray({"render", "cornell", "--size", "16x12", "--spp", "2",

@@ -45,13 +45,28 @@ TEST_F(QualityBench, EveryConfigurationGetsARowPerFrameAndTheTruthIsShared) {
     EXPECT_GT(c["rmse_at_budget"].get<double>(), 0.0) << c["config"];
     EXPECT_GT(c["time_over_budget"].get<double>(), 0.0) << c["config"];
   }
-  const std::vector<std::string> expected = {
-      "baseline",         "wavefront",      "sky-rgba",       "one-texel",
-      "branchless",       "bluenoise",      "bsdf-sky",       "adaptive",
-      "lowres-sky",       "regularize",     "clamp",          "denoise",
-      "cache",            "reuse",          "reuse-auto",     "unbiased",
-      "defaults",         "defaults+denoise", "defaults+cache", "defaults+reuse",
-      "defaults+reuse-auto", "all"};
+  const std::vector<std::string> expected = {"baseline",
+                                             "wavefront",
+                                             "sky-rgba",
+                                             "one-texel",
+                                             "branchless",
+                                             "bluenoise",
+                                             "bsdf-sky",
+                                             "adaptive",
+                                             "lowres-sky",
+                                             "regularize",
+                                             "clamp",
+                                             "denoise",
+                                             "cache",
+                                             "reuse",
+                                             "reuse-auto",
+                                             "unbiased",
+                                             "defaults",
+                                             "defaults+denoise",
+                                             "defaults+cache",
+                                             "defaults+reuse",
+                                             "defaults+reuse-auto",
+                                             "all"};
   EXPECT_EQ(names, expected);
   const std::vector<std::string> biased = {"lowres-sky",     "regularize", "clamp",
                                            "denoise",        "cache",      "defaults+denoise",

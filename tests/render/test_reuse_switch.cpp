@@ -31,7 +31,7 @@ TEST(ReuseSwitch, MomentsCompareDeviationsFromThePixelsEarlierMean) {
   ReuseMoments m;
   m.add_sample(film, 0, 0, Color(5.0f), Color(3.0f), 100.0f);
   EXPECT_EQ(m.samples, 1u);
-  EXPECT_DOUBLE_EQ(m.own_variance(), 27.0 * 2 / 3);   // 3 x 3^2, n / (n + 1)
+  EXPECT_DOUBLE_EQ(m.own_variance(), 27.0 * 2 / 3);    // 3 x 3^2, n / (n + 1)
   EXPECT_DOUBLE_EQ(m.reused_variance(), 18.0 - 24.0);  // less 27 - 3 x 1^2
   // A deviation beyond the clip counts at the clip: sqrt(27) -> 3.
   ReuseMoments clipped;
@@ -87,7 +87,7 @@ TEST(ReuseSwitch, UndecidedUntilItHasEnoughSamplesAndBothCosts) {
   ReuseSwitch s;
   s.after_reuse_pass(moments(1.0, 0.1, ReuseSwitch::kMinSamples - 1), 1.2, 2.0);
   EXPECT_FALSE(s.on());
-  EXPECT_TRUE(s.next_on(1.2));  // probes again at once
+  EXPECT_TRUE(s.next_on(1.2));                         // probes again at once
   s.after_reuse_pass(moments(1.0, 0.1, 1), 1.4, 0.0);  // enough samples, no cost ratio yet
   EXPECT_FALSE(s.on());
   EXPECT_TRUE(s.next_on(1.4));
