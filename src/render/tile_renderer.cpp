@@ -84,7 +84,7 @@ struct TileRenderer::WaveBuffers {
   // the pools have been gathered; the pools.
   std::vector<ReuseVertices> reuse;
   std::vector<Color> indirect, camera;
-  std::vector<Color> own_indirect, own;  // per slot: the path's own estimate, for ReuseMoments
+  std::vector<Color> own;  // per slot: the path's own value, for ReuseMoments
   std::vector<uint32_t> pool_slots, pool_begin;
   PathReuseScratch reuse_scratch;
 };
@@ -342,18 +342,17 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
 
 void TileRenderer::reuse_and_finish(WaveBuffers& b, PathCounters& local) const {
   reuse_pools(b.ids, reuse_pool(), b.pool_slots, b.pool_begin);
-  b.own_indirect.assign(b.indirect.begin(), b.indirect.end());
+  // Each path's own value, taken before the pools replace what its walk found (ReuseMoments).
+  b.own.resize(b.ids.size());
+  PathCounters own_counters;  // the own estimates are not added: their invalid ones do not count
+  for (size_t slot = 0; slot < b.ids.size(); ++slot)
+    b.own[slot] = integrator_.finish(b.indirect[slot], b.camera[slot], own_counters, b.clamp[slot]);
   const uint64_t t0 = settings_.quality.profile_phases ? now_ns() : 0;
   local.shadow_rays += reuse_paths(integrator_.accel(), b.pool_slots, b.pool_begin, b.reuse,
                                    b.indirect, b.reuse_scratch);
   if (settings_.quality.profile_phases) local.shadow_ns += now_ns() - t0;
-  b.own.resize(b.ids.size());
-  PathCounters own_counters;  // the own estimates are not added: their invalid ones do not count
-  for (size_t slot = 0; slot < b.ids.size(); ++slot) {
+  for (size_t slot = 0; slot < b.ids.size(); ++slot)
     b.result[slot] = integrator_.finish(b.indirect[slot], b.camera[slot], local, b.clamp[slot]);
-    b.own[slot] =
-        integrator_.finish(b.own_indirect[slot], b.camera[slot], own_counters, b.clamp[slot]);
-  }
 }
 
 void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, float reuse_clip,
