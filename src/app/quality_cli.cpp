@@ -74,9 +74,10 @@ void add_quality_options(CLI::App* cmd, QualityCli& q) {
   add_radiance_cache_options(cmd, o.cache);
   cmd->add_option("--path-reuse", q.path_reuse,
                   "Unbiased: pools of N neighbouring pixels share their paths' second vertices on "
-                  "diffuse surfaces, each connected by a shadow ray: N = 2..64, off (or 0), or "
-                  "auto (pools of 16 in frame-budget mode where the render's own passes show "
-                  "they pay). Needs --max-bounces 2 or more and no --cache-vertex")
+                  "diffuse surfaces, each connected by a shadow ray: N = 2..64 in every pass, "
+                  "off (or 0), or auto (pools of 16 in frame-budget mode while the render's own "
+                  "passes show they pay; fixed --spp renders trace without). Needs "
+                  "--max-bounces 2 or more and no --cache-vertex")
       ->capture_default_str();
   cmd->add_flag("--adaptive", q.adaptive_on,
                 std::string("Adaptive sampling in frame-budget mode: extra samples where the "

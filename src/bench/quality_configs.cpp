@@ -49,10 +49,11 @@ using A = QualityBenchOptions;
 // The baseline has every switch off (tiles, 12-byte sky texels, textures kept, per-type
 // material evaluation, PCG numbers, a constant sky sampled uniformly, uniform sampling); each row
 // switches one technique on; "unbiased" switches on every technique that leaves the expected image
-// alone, "defaults" is QualityOptions{} (what the renderer does unless told otherwise),
-// "defaults+denoise", "defaults+cache", "defaults+reuse" and "defaults+reuse-auto" are what
-// turning the denoiser, the radiance cache, path reuse or its automatic choice on by default
-// would give, "all" switches on every one (the cache then switches path reuse off).
+// alone, "defaults" is QualityOptions{} (what the renderer does unless told otherwise, path
+// reuse where it pays included), "defaults+denoise", "defaults+cache" and "defaults+reuse" are
+// what turning the denoiser, the radiance cache or path reuse in every pass on by default would
+// give, "defaults-reuse" the defaults without path reuse, "all" switches on every one (the cache
+// then switches path reuse off).
 const std::vector<Config>& configurations() {
   static const std::vector<Config> configs = {
       {"baseline", [](S&, const A&) {}},
@@ -87,10 +88,10 @@ const std::vector<Config>& configurations() {
          set_defaults(s);
          set_reuse(s.quality);
        }},
-      {"defaults+reuse-auto",
+      {"defaults-reuse",
        [](S& s, const A&) {
          set_defaults(s);
-         set_reuse(s.quality, true);
+         s.quality.path_reuse = 0;
        }},
       {"all",
        [](S& s, const A& a) {

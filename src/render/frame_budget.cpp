@@ -13,7 +13,17 @@ FrameBudgetRenderer::FrameBudgetRenderer(TileRenderer& renderer, double frame_ms
       frame_ms_(frame_ms),
       reuse_auto_(renderer.settings().quality.path_reuse_auto &&
                   renderer.integrator().reuse_pool_pixels() > 0) {
-  if (reuse_auto_) renderer_.set_path_reuse(false);
+  if (!reuse_auto_) return;
+  renderer_.set_path_reuse(reuse_switch_.next_on(0));
+  const RenderSettings& s = renderer.settings();
+  if (s.quality.adaptive) {
+    reuse_pixels_.resize(static_cast<size_t>(s.width) * static_cast<size_t>(s.height));
+    renderer_.set_reuse_pixels(&reuse_pixels_);
+  }
+}
+
+FrameBudgetRenderer::~FrameBudgetRenderer() {
+  if (reuse_auto_) renderer_.set_reuse_pixels(nullptr);
 }
 
 bool FrameBudgetRenderer::adaptive_ready() const {
@@ -75,7 +85,7 @@ double FrameBudgetRenderer::ms_per_spp() const {
                                                      : cost(false, reuse).ms_per_spp;
 }
 
-double FrameBudgetRenderer::reuse_cost_ratio(bool adaptive) const {
+double FrameBudgetRenderer::pass_cost_ratio(bool adaptive) const {
   for (bool phase : {adaptive, !adaptive}) {
     const double off = cost(phase, false).ms_per_spp, on = cost(phase, true).ms_per_spp;
     if (off > 0 && on > 0) return on / off;
@@ -83,11 +93,17 @@ double FrameBudgetRenderer::reuse_cost_ratio(bool adaptive) const {
   return 0;
 }
 
+double FrameBudgetRenderer::reuse_cost_ratio(bool adaptive) const {
+  return std::max(pass_cost_ratio(adaptive), reuse_switch_.moments().cost_ratio());
+}
+
 double FrameBudgetRenderer::plan_pass(bool adaptive, bool reuse, double left_ms) const {
   // A pass costs a fixed overhead plus its samples; folding the overhead into the cost per
   // sample would make small passes look expensive and plan ever smaller ones.
   const PassCost& known = cost(adaptive, reuse);
   if (known.ms_per_spp > 0) return (left_ms - known.overhead_ms) / known.ms_per_spp;
+  // A pass without reuse costs at most what one with it does.
+  if (!reuse && cost(adaptive, true).ms_per_spp > 0) return plan_pass(adaptive, true, left_ms);
   if (reuse && cost(adaptive, false).ms_per_spp > 0) {
     // Guessed from the same phase without reuse, as a small pass.
     const double ratio = reuse_cost_ratio(adaptive);
@@ -132,7 +148,8 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film, double reserved_ms) {
     film_samples_ += pass.samples;
     if (reuse_auto_ && reuse)
       reuse_switch_.after_reuse_pass(pass.reuse, static_cast<double>(film_samples_) / pixels,
-                                     reuse_cost_ratio(adaptive));
+                                     pass_cost_ratio(adaptive),
+                                     s.quality.adaptive ? &reuse_pixels_ : nullptr);
     frame.stats.accumulate(pass);
     first_pass = false;
   }

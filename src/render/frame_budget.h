@@ -24,6 +24,10 @@ class FrameBudgetRenderer {
   // Switches `renderer`'s path reuse (TileRenderer::set_path_reuse) when its settings ask for
   // the automatic choice; leaves it alone otherwise.
   FrameBudgetRenderer(TileRenderer& renderer, double frame_ms);
+  ~FrameBudgetRenderer();
+  // The renderer writes into this object's per-pixel reuse moments while it lives.
+  FrameBudgetRenderer(const FrameBudgetRenderer&) = delete;
+  FrameBudgetRenderer& operator=(const FrameBudgetRenderer&) = delete;
 
   // `reserved_ms`: the time the caller will spend on the frame after rendering it (the
   // denoiser's filtering, FrameResolver::expected_ms); the passes plan to end that much before
@@ -71,8 +75,12 @@ class FrameBudgetRenderer {
   // Cost of the next pass's kind: [adaptive][with path reuse].
   PassCost& cost(bool adaptive, bool reuse) { return costs_[adaptive][reuse]; }
   const PassCost& cost(bool adaptive, bool reuse) const { return costs_[adaptive][reuse]; }
-  // Cost per spp with reuse over without, from the phase given if both are known there, else
-  // from the other phase; 0 while unknown.
+  // Cost per spp with reuse over without, from passes with and without it: the phase given if
+  // both are known there, else the other phase; 0 while unknown.
+  double pass_cost_ratio(bool adaptive) const;
+  // The larger of that and the share of their time the pools took in passes with reuse
+  // (ReuseMoments::cost_ratio, which leaves out what recording the vertices costs); 0 while
+  // neither is known.
   double reuse_cost_ratio(bool adaptive) const;
   // The samples per pixel a pass of this kind may add in what is left of the frame.
   double plan_pass(bool adaptive, bool reuse, double left_ms) const;
@@ -82,7 +90,8 @@ class FrameBudgetRenderer {
   PassCost costs_[2][2];
   bool reuse_auto_ = false;
   ReuseSwitch reuse_switch_;
-  uint64_t film_samples_ = 0;  // added by this renderer's passes
+  ReusePixelMoments reuse_pixels_;  // with adaptive sampling (ReuseSwitch::after_reuse_pass)
+  uint64_t film_samples_ = 0;       // added by this renderer's passes
   // Samples every pixel has from uniform passes (whole ones, or completed rounds of partial
   // ones): the sample index of the next whole pass, and what adaptive sampling waits for.
   uint32_t uniform_samples_ = 0;

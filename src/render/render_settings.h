@@ -62,15 +62,15 @@ struct QualityOptions {
   // Unbiased: pools of this many neighbouring pixels share their paths' second vertices
   // (render/path_reuse.h; 0 or 1 = off). Needs max_bounces and russian_roulette_depth >= 2 and
   // no radiance cache, else it is off.
-  int path_reuse = 0;
-  // The pool `render --path-reuse auto` takes: 8 and 32 measured worse on the pathtracer's
-  // Cornell box (docs/quality.md, "Forty-ninth session").
+  int path_reuse = kReusePool;
+  // The default pool, and the one `render --path-reuse auto` takes: 8 and 32 measured worse on
+  // the pathtracer's Cornell box (docs/quality.md, "Forty-ninth session").
   static constexpr int kReusePool = 16;
   // With path_reuse on: frame-budget rendering (render/frame_budget.h) turns reuse on or off per
   // pass, as its own passes show it lowers the error per unit of time or not
   // (render/reuse_switch.h); passes of a fixed sample count (render --spp, bench render, tune's
-  // frames, ground truths) trace without it.
-  bool path_reuse_auto = false;
+  // frames, ground truths) trace without it. False: every pass traces with reuse.
+  bool path_reuse_auto = true;
 
   bool biased() const {
     return lowres_sky || regularize || clamp > 0 || clamp_relative > 0 || denoise ||
@@ -78,12 +78,14 @@ struct QualityOptions {
   }
 
   // Every technique off: tiles, 12-byte sky texels, per-type materials, PCG numbers, uniform
-  // sampling, a constant sky light-sampled uniformly, nothing biased. The plain renderer that
-  // ground truths use and that the ablation measures every technique against.
+  // sampling, a constant sky light-sampled uniformly, no path reuse, nothing biased. The plain
+  // renderer that ground truths use and that the ablation measures every technique against.
   static QualityOptions reference() {
     QualityOptions o;
     o.wavefront = o.sky_rgba = o.adaptive = o.branchless_materials = o.bsdf_sky = false;
     o.sampler = SamplerKind::kPcg;
+    o.path_reuse = 0;
+    o.path_reuse_auto = false;
     return o.without_bias();
   }
 

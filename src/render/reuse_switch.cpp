@@ -1,5 +1,7 @@
 #include "render/reuse_switch.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace tuneray {
@@ -17,7 +19,7 @@ float clipped_squared_length(Color d, float clip) {
 }  // namespace
 
 void ReuseMoments::add_sample(const Film& film, int x, int y, Color own_estimate,
-                              Color reused_estimate, float clip) {
+                              Color reused_estimate, float clip, ReusePixelMoments* pixels) {
   const uint32_t n = film.samples(x, y);
   if (n == 0) return;
   const Color mean = film.sum(x, y) / static_cast<float>(n);
@@ -28,17 +30,42 @@ void ReuseMoments::add_sample(const Film& film, int x, int y, Color own_estimate
   removed += weight * (d_own - d_reused);
   weights += weight;
   ++samples;
+  if (pixels)
+    pixels->add(static_cast<size_t>(y) * static_cast<size_t>(film.width()) + x,
+                d_own * n / (n + 1.0), d_own - d_reused);
 }
 
-void ReuseSwitch::after_reuse_pass(const ReuseMoments& pass, double film_spp, double cost_ratio) {
-  moments_.add(pass);
-  if (moments_.samples < kMinSamples || cost_ratio <= 0) {
-    on_ = false;  // undecided: the next pass probes again
-    next_probe_spp_ = 0;
-    return;
+void ReusePixelMoments::resize(size_t pixels) {
+  own_.assign(pixels, 0.0f);
+  removed_.assign(pixels, 0.0f);
+  count_.assign(pixels, 0);
+}
+
+ReusePixelMoments::Deviations ReusePixelMoments::deviations() const {
+  Deviations d;
+  for (size_t p = 0; p < count_.size(); ++p) {
+    if (count_[p] == 0) continue;
+    const double own = own_[p] / count_[p], reused = (own_[p] - removed_[p]) / count_[p];
+    d.own += std::sqrt(std::max(0.0, own));
+    d.reused += std::sqrt(std::max(0.0, reused));
+    ++d.pixels;
   }
-  const double own = moments_.own_variance();
-  on_ = own > 0 && cost_ratio * moments_.reused_variance() < (1 - kMinGain) * own;
+  return d;
+}
+
+void ReuseSwitch::after_reuse_pass(const ReuseMoments& pass, double film_spp,
+                                   double pass_cost_ratio, const ReusePixelMoments* pixels) {
+  moments_.add(pass);
+  const double pools = moments_.cost_ratio();
+  if (moments_.samples < kMinSamples || pools <= 0) return;  // undecided: as it is
+  const double ratio = std::max(pools, pass_cost_ratio);
+  double own = moments_.own_variance(), reused = moments_.reused_variance();
+  if (pixels) {
+    const ReusePixelMoments::Deviations d = pixels->deviations();
+    own = d.own * d.own;
+    reused = d.reused * d.reused;
+  }
+  on_ = own > 0 && ratio * reused < (1 - kMinGain) * own;
   next_probe_spp_ = on_ ? 0 : 2 * film_spp;
 }
 

@@ -8,7 +8,9 @@
 // variance reuse removes, and the passes' times give what it costs.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "math/vec.h"
 #include "render/film.h"
@@ -29,37 +31,81 @@ namespace tuneray {
 // and adaptive sampling gives the pixels of high variance (a light's rim, seen directly, whose
 // variance no reuse touches) many samples, so per sample they matter less than their variance
 // says.
+class ReusePixelMoments;
+
 struct ReuseMoments {
   double own = 0;        // sum of |d_own|^2 n / (n + 1) / n
   double removed = 0;    // sum of (|d_own|^2 - |d_reused|^2) / n
   double weights = 0;    // sum of 1 / n
   uint64_t samples = 0;  // those whose pixel had a sample before
+  // What reuse costs, from the same passes: their thread time and the share of it the pools
+  // took (their connection rays and gathers). Without reuse a pass would cost the rest, so the
+  // passes with reuse tell both costs and no pass without it is needed to compare.
+  double traced_ms = 0;
+  double pool_ms = 0;
   // Deviations are clipped at this many times the image's mean pixel length.
   static constexpr float kClip = 8;
   // The clip length for an image of this mean pixel length (none for a black one).
   static float clip_length(double mean_pixel_length);
-  // One sample of pixel (x, y), before it is added to the film.
+  // One sample of pixel (x, y), before it is added to the film; also to `pixels` when given.
   void add_sample(const Film& film, int x, int y, Color own_estimate, Color reused_estimate,
-                  float clip);
+                  float clip, ReusePixelMoments* pixels = nullptr);
   void add(const ReuseMoments& o) {
     own += o.own;
     removed += o.removed;
     weights += o.weights;
     samples += o.samples;
+    traced_ms += o.traced_ms;
+    pool_ms += o.pool_ms;
   }
   // Weighted means of the variance of one sample without and with reuse.
   double own_variance() const { return weights > 0 ? own / weights : 0; }
   double reused_variance() const { return weights > 0 ? (own - removed) / weights : 0; }
+  // Cost per sample with reuse over without (0 while no time is known).
+  double cost_ratio() const {
+    return traced_ms > 0 && pool_ms >= 0 && pool_ms < traced_ms ? traced_ms / (traced_ms - pool_ms)
+                                                                : 0;
+  }
+};
+
+// The same sums pixel by pixel (unweighted), for renders with adaptive sampling. There the
+// error of a budget is not the mean of the pixels' variances: samples go where the error is
+// (n_p proportional to sigma_p), so the squared error of the image, sum sigma_p^2 / n_p, goes as
+// (sum sigma_p)^2 over the samples taken. Reuse that lowers the variance of many moderately
+// noisy pixels (indirect light on walls) and leaves a few very noisy ones alone (a caustic)
+// changes that sum far more than the mean variance: on cornell-box-water it halves the error
+// with adaptive sampling and raises it without (docs/quality.md, fifty-first session).
+// A pixel is written by one thread per pass (the schedulers' chunks hold whole pixels).
+class ReusePixelMoments {
+ public:
+  explicit ReusePixelMoments(size_t pixels = 0) { resize(pixels); }
+  void resize(size_t pixels);
+  void add(size_t pixel, double own, double removed) {
+    own_[pixel] += static_cast<float>(own);
+    removed_[pixel] += static_cast<float>(removed);
+    ++count_[pixel];
+  }
+  // Sums over the pixels with samples of the standard deviation of one sample, without and
+  // with reuse (a pixel whose estimate of the latter is negative counts 0).
+  struct Deviations {
+    double own = 0, reused = 0;
+    size_t pixels = 0;
+  };
+  Deviations deviations() const;
+
+ private:
+  std::vector<float> own_, removed_;
+  std::vector<uint32_t> count_;
 };
 
 // The decision, pass by pass. Reuse pays where it gives the lower error per unit of time: at
 // cost c (ms per spp) and variance v per sample the squared error of a time budget goes as
-// c x v, so on iff c_on x v_reused < (1 - kMinGain) x c_off x v_own. It needs both costs, so
-// passes run without reuse first; from a film with a sample per pixel on, a probe pass runs with
-// it. Then reuse stays on while
-// it pays (each of its passes adds moments); once it does not, it is off and is probed again
-// each time the film's samples per pixel have doubled (so probes cost a vanishing share of a
-// long render, and a decision taken on few samples is revisited).
+// c x v, so on iff c_on x v_reused < (1 - kMinGain) x c_off x v_own. Every pass with reuse
+// measures all four, so reuse is on from the first pass (on a short render the passes spent
+// finding out would otherwise be much of its time, and where reuse pays it pays most there).
+// It stays on while it pays; once it does not, it is off and is probed again each time the
+// film's samples per pixel have doubled (so probes cost a vanishing share of a long render,
+// and a decision taken on few samples is revisited).
 class ReuseSwitch {
  public:
   // Samples in the moments before a decision is trusted; fewer and the next pass probes again.
@@ -70,19 +116,25 @@ class ReuseSwitch {
 
   // Whether the next pass traces with reuse, the film holding `film_spp` samples per pixel.
   bool next_on(double film_spp) const { return on_ || film_spp >= next_probe_spp_; }
-  // True while reuse is not (yet) found to pay: a pass with it is a probe, kept small.
+  // True once reuse was found not to pay: a pass with it is a probe, kept small.
   bool probing() const { return !on_; }
   bool on() const { return on_; }
 
-  // After a pass with reuse: its moments, the film's samples per pixel after it and the ratio of
-  // the costs per spp with and without reuse (0 while either is unknown).
-  void after_reuse_pass(const ReuseMoments& pass, double film_spp, double cost_ratio);
+  // After a pass with reuse: its moments and costs, the film's samples per pixel after it and,
+  // when known, the cost ratio of whole passes with and without reuse (0 if not). The moments'
+  // own ratio counts only the pools' time, so it is a lower bound (on cornell-box-original
+  // 1.9 where whole renders take 2.5x): the larger of the two decides. Until the moments hold
+  // kMinSamples samples and a time, the switch stays as it is.
+  // With `pixels` (renders with adaptive sampling) the variances compared are the squared sums
+  // of the pixels' deviations, (sum sigma_p)^2, else the moments' weighted mean variances.
+  void after_reuse_pass(const ReuseMoments& pass, double film_spp, double pass_cost_ratio = 0,
+                        const ReusePixelMoments* pixels = nullptr);
   const ReuseMoments& moments() const { return moments_; }
 
  private:
   ReuseMoments moments_;
-  bool on_ = false;
-  double next_probe_spp_ = 1;
+  bool on_ = true;
+  double next_probe_spp_ = 0;
 };
 
 }  // namespace tuneray

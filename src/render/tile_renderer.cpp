@@ -172,7 +172,10 @@ PassStats TileRenderer::run(Film& film, const PixelWork& work,
   // on the order in which threads finish.
   const ClampThresholds clamp = clamp_for(film);
   PixelWork pass = work;
-  if (reuse_pool() > 0) pass.reuse_clip = ReuseMoments::clip_length(film.mean_value_length());
+  if (reuse_pool() > 0) {
+    pass.reuse_clip = ReuseMoments::clip_length(film.mean_value_length());
+    pass.reuse_pixels = reuse_pixels_;
+  }
   PassStats stats;
   if (settings_.quality.wavefront) {
     stats = run_wavefront(film, pass, clamp);
@@ -341,6 +344,7 @@ void TileRenderer::trace_paths(WaveBuffers& b, bool batched, PathCounters& local
 }
 
 void TileRenderer::reuse_and_finish(WaveBuffers& b, PathCounters& local) const {
+  const uint64_t start = now_ns();  // all but the last loop is what a pass without reuse saves
   reuse_pools(b.ids, reuse_pool(), b.pool_slots, b.pool_begin);
   // Each path's own value, taken before the pools replace what its walk found (ReuseMoments).
   b.own.resize(b.ids.size());
@@ -351,11 +355,17 @@ void TileRenderer::reuse_and_finish(WaveBuffers& b, PathCounters& local) const {
   local.shadow_rays += reuse_paths(integrator_.accel(), b.pool_slots, b.pool_begin, b.reuse,
                                    b.indirect, b.reuse_scratch);
   if (settings_.quality.profile_phases) local.shadow_ns += now_ns() - t0;
+  local.reuse.pool_ms += static_cast<double>(now_ns() - start) * 1e-6;
   for (size_t slot = 0; slot < b.ids.size(); ++slot)
     b.result[slot] = integrator_.finish(b.indirect[slot], b.camera[slot], local, b.clamp[slot]);
 }
 
-void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, float reuse_clip,
+void TileRenderer::add_work_time(PathCounters& local, uint64_t ns) const {
+  if (settings_.quality.profile_phases) local.total_ns += ns;
+  if (reuse_pool() > 0) local.reuse.traced_ms += static_cast<double>(ns) * 1e-6;
+}
+
+void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, const PixelWork& work,
                                PathCounters& local) const {
   // Each pixel's samples are consecutive slots, in index order, as a lone path loop adds them;
   // each goes straight to the film (its record is in the cache after the first).
@@ -366,7 +376,8 @@ void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, float reuse_cli
     if (k + kAhead < b.ids.size()) film.prefetch(b.ids[k + kAhead].x, b.ids[k + kAhead].y);
     const PixelSampleId& id = b.ids[k];
     const int x = static_cast<int>(id.x), y = static_cast<int>(id.y);
-    if (reused) local.reuse.add_sample(film, x, y, b.own[k], b.result[k], reuse_clip);
+    if (reused)
+      local.reuse.add_sample(film, x, y, b.own[k], b.result[k], work.reuse_clip, work.reuse_pixels);
     film.add_sample(x, y, b.result[k], id.index);
   }
   if (reused) local.reused_samples += b.ids.size();
@@ -376,7 +387,7 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
                                   const std::function<void()>& on_tile_done) const {
   const int ts = std::max(1, settings_.tile_size);
   const int tiles_x = (settings_.width + ts - 1) / ts;
-  const bool profile = settings_.quality.profile_phases;
+  const bool timed = settings_.quality.profile_phases || reuse_pool() > 0;
   tbb::combinable<PathCounters> counters;
   tbb::combinable<uint64_t> samples;
   auto start = std::chrono::steady_clock::now();
@@ -387,7 +398,7 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
         uint64_t& local_samples = samples.local();
         WaveBuffers& b = wave_pool_->buffers.local();
         for (int tile = r.begin(); tile != r.end(); ++tile) {
-          uint64_t t0 = profile ? now_ns() : 0;
+          const uint64_t t0 = timed ? now_ns() : 0;
           int x0 = (tile % tiles_x) * ts, y0 = (tile / tiles_x) * ts;
           int x1 = std::min(x0 + ts, settings_.width), y1 = std::min(y0 + ts, settings_.height);
           // The tile's pixel samples, traced one ray at a time, shaded eight at a time.
@@ -404,10 +415,10 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
           if (!b.ids.empty()) {
             start_paths(b, clamp);
             trace_paths(b, false, local);
-            add_to_film(b, film, work.reuse_clip, local);
+            add_to_film(b, film, work, local);
             local_samples += b.ids.size();
           }
-          if (profile) local.total_ns += now_ns() - t0;
+          if (timed) add_work_time(local, now_ns() - t0);
           if (on_tile_done) on_tile_done();
         }
       });
@@ -422,7 +433,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
   const int width = settings_.width;
   const size_t pixel_count = wave_pixels_.size();
   const size_t batch = static_cast<size_t>(std::max(1, settings_.quality.batch_size));
-  const bool profile = settings_.quality.profile_phases;
+  const bool timed = settings_.quality.profile_phases || reuse_pool() > 0;
 
   // Chunks of whole pixels (so each pixel has one writer and sums its samples in order) with
   // at most `batch` paths, unless one pixel alone has more; positions in wave_pixels_. A
@@ -467,7 +478,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                       PathCounters& local = counters.local();
                       WaveBuffers& b = wave_pool_->buffers.local();
                       for (size_t chunk = r.begin(); chunk != r.end(); ++chunk) {
-                        uint64_t t_chunk = profile ? now_ns() : 0;
+                        const uint64_t t_chunk = timed ? now_ns() : 0;
                         b.ids.clear();
                         for (size_t k = chunk_begin[chunk]; k < chunk_begin[chunk + 1]; ++k) {
                           const WavePixel px = wave_pixels_[k];
@@ -478,9 +489,9 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                         if (!b.ids.empty()) {
                           start_paths(b, clamp);
                           trace_paths(b, true, local);
-                          add_to_film(b, film, work.reuse_clip, local);
+                          add_to_film(b, film, work, local);
                         }
-                        if (profile) local.total_ns += now_ns() - t_chunk;
+                        if (timed) add_work_time(local, now_ns() - t_chunk);
                       }
                     });
 

@@ -75,6 +75,9 @@ class TileRenderer {
   // PathIntegrator::reuse_pool_pixels). On from the start unless quality.path_reuse_auto, which
   // leaves it to frame-budget rendering to switch (render/frame_budget.h).
   void set_path_reuse(bool on) { reuse_on_ = on; }
+  // Where passes with reuse also add their moments pixel by pixel (null: nowhere; the caller
+  // keeps it alive while it is set, and sized to the image).
+  void set_reuse_pixels(ReusePixelMoments* pixels) { reuse_pixels_ = pixels; }
   // Pixels per path-reuse pool of the next pass; 0 = it traces without reuse.
   int reuse_pool() const { return reuse_on_ ? integrator_.reuse_pool_pixels() : 0; }
 
@@ -102,8 +105,10 @@ class TileRenderer {
       return extra ? film->samples(static_cast<int>(x), static_cast<int>(y)) : uniform_first;
     }
     uint32_t count(size_t i) const { return extra ? (*extra)[i] : uniform_count; }
-    // Passes with path reuse: the length at which ReuseMoments clip a sample's deviation.
+    // Passes with path reuse: the length at which ReuseMoments clip a sample's deviation, and
+    // where its moments go pixel by pixel (if anywhere).
     float reuse_clip = 0;
+    ReusePixelMoments* reuse_pixels = nullptr;
   };
   PassStats run(Film& film, const PixelWork& work, const std::function<void()>& on_tile_done) const;
   PassStats run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
@@ -115,10 +120,12 @@ class TileRenderer {
   // to the film, each pixel's samples in index order.
   void start_paths(WaveBuffers& b, const ClampThresholds& clamp) const;
   void trace_paths(WaveBuffers& b, bool batched, PathCounters& counters) const;
-  void add_to_film(const WaveBuffers& b, Film& film, float reuse_clip,
+  void add_to_film(const WaveBuffers& b, Film& film, const PixelWork& work,
                    PathCounters& counters) const;
   // Path reuse: the wave's pools gathered (path_reuse.h), then every path's value taken.
   void reuse_and_finish(WaveBuffers& b, PathCounters& counters) const;
+  // A chunk's or tile's thread time, to the phase profile and to path reuse's costs.
+  void add_work_time(PathCounters& local, uint64_t ns) const;
 
   const Scene& scene_;
   RenderSettings settings_;
@@ -126,6 +133,7 @@ class TileRenderer {
   PathIntegrator integrator_;
   const Sampler& prototype_;
   bool reuse_on_;
+  ReusePixelMoments* reuse_pixels_ = nullptr;
   struct WavePool;
   std::unique_ptr<WavePool> wave_pool_;  // per-thread wavefront buffers, kept between passes
   // QualityOptions::cache: read by the paths of a pass, trained between passes with the

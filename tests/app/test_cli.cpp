@@ -90,12 +90,16 @@ TEST_F(Cli, FrameBudgetRenderReportsEveryFrame) {
 }
 
 TEST_F(Cli, PathReuseTakesAPoolOffOrAuto) {
-  // Forced on, every frame's samples are traced with reuse; auto reports how many were.
-  for (const std::string& reuse : {std::string("16"), std::string("auto")}) {
+  // Forced on, every frame's samples are traced with reuse, off none; auto (the default)
+  // starts with reuse and reports how many were.
+  for (const std::string& reuse :
+       {std::string("16"), std::string("auto"), std::string("off"), std::string("default")}) {
     const std::string report = path("r" + reuse + ".json");
-    CommandResult r =
-        run_tuneray({"render", "cornell", "--size", "16x12", "--frame-ms", "5", "--frames", "3",
-                     "--path-reuse", reuse, "--out", path("r.exr"), "--report", report, "--quiet"});
+    std::vector<std::string> args = {"render",   "cornell",  "--size", "16x12", "--frame-ms",
+                                     "5",        "--frames", "3",      "--out", path("r.exr"),
+                                     "--report", report,     "--quiet"};
+    if (reuse != "default") args.insert(args.end(), {"--path-reuse", reuse});
+    CommandResult r = run_tuneray(args);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     std::ifstream f(report);
     const nlohmann::json j = nlohmann::json::parse(f);
@@ -105,7 +109,13 @@ TEST_F(Cli, PathReuseTakesAPoolOffOrAuto) {
       if (reuse == "16") {
         EXPECT_DOUBLE_EQ(reused, spp) << j.dump(2);
       }
+      if (reuse == "off") {
+        EXPECT_EQ(reused, 0.0) << j.dump(2);
+      }
       EXPECT_LE(reused, spp) << j.dump(2);
+    }
+    if (reuse == "auto" || reuse == "default") {
+      EXPECT_GT(j["frames"][0]["reused_spp"].get<double>(), 0.0) << j.dump(2);
     }
   }
   for (const char* bad : {"1", "65", "-2", "16x", "sometimes"}) {

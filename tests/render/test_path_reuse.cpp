@@ -152,6 +152,7 @@ RenderSettings box_settings(int reuse) {
   s.max_bounces = 8;
   s.seed = 7;
   s.quality.path_reuse = reuse;
+  s.quality.path_reuse_auto = false;  // in every pass, fixed counts too
   return s;
 }
 

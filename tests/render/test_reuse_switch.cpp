@@ -12,9 +12,12 @@
 namespace tuneray {
 namespace {
 
-// Moments of `samples` samples whose variances per sample are `own` and `reused`.
-ReuseMoments moments(double own, double reused, uint64_t samples) {
+// Moments of `samples` samples whose variances per sample are `own` and `reused`, from passes
+// that cost `cost_ratio` times what they would without reuse.
+ReuseMoments moments(double own, double reused, uint64_t samples, double cost_ratio) {
   ReuseMoments m;
+  m.traced_ms = 10 * cost_ratio;
+  m.pool_ms = 10 * (cost_ratio - 1);
   m.samples = samples;
   m.weights = static_cast<double>(samples);
   m.own = own * static_cast<double>(samples);
@@ -47,52 +50,115 @@ TEST(ReuseSwitch, MomentsCompareDeviationsFromThePixelsEarlierMean) {
   m.add(clipped);
   EXPECT_EQ(m.samples, 2u);
   EXPECT_DOUBLE_EQ(m.own_variance(), (18.0 + 6.0) / 2);
+  EXPECT_DOUBLE_EQ(m.cost_ratio(), 0.0);  // no time yet
+  m.traced_ms = 3;
+  m.pool_ms = 1;
+  EXPECT_DOUBLE_EQ(m.cost_ratio(), 1.5);
+  m.pool_ms = 3;  // nothing but pools: no cost without reuse to compare with
+  EXPECT_DOUBLE_EQ(m.cost_ratio(), 0.0);
   EXPECT_FLOAT_EQ(ReuseMoments::clip_length(0.5), 4.0f);
   EXPECT_TRUE(std::isinf(ReuseMoments::clip_length(0.0)));
 }
 
-TEST(ReuseSwitch, ProbesOnceTheFilmHasASamplePerPixel) {
-  ReuseSwitch s;
-  EXPECT_FALSE(s.next_on(0.0));
-  EXPECT_FALSE(s.next_on(0.99));
-  EXPECT_TRUE(s.next_on(1.0));
-  EXPECT_TRUE(s.probing());
+TEST(ReuseSwitch, PixelMomentsSumEachPixelsDeviation) {
+  // A 2x1 film: pixel 1 has samples 1 and 3 (mean 2); a sample of own estimate 5 (deviation 3
+  // per channel, 27 in all, 18 after n / (n + 1)) and reused 3 (1 per channel, 3 in all).
+  Film film(2, 1);
+  film.add_sample(1, 0, Color(1.0f), 0);
+  film.add_sample(1, 0, Color(3.0f), 1);
+  ReusePixelMoments pixels(2);
+  ReuseMoments m;
+  m.add_sample(film, 1, 0, Color(5.0f), Color(3.0f), 100.0f, &pixels);
+  m.add_sample(film, 0, 0, Color(5.0f), Color(3.0f), 100.0f, &pixels);  // no mean: not counted
+  ReusePixelMoments::Deviations d = pixels.deviations();
+  EXPECT_EQ(d.pixels, 1u);
+  EXPECT_NEAR(d.own, std::sqrt(18.0), 1e-5);
+  EXPECT_DOUBLE_EQ(d.reused, 0.0);  // 18 - 24 < 0 counts as none
+  // By hand: sigma 2 and 1 without reuse, 1 and 1 with it, over two samples each.
+  ReusePixelMoments hand(3);
+  hand.add(0, 4, 3);
+  hand.add(0, 4, 3);
+  hand.add(2, 1, 0);
+  hand.add(2, 1, 0);
+  d = hand.deviations();
+  EXPECT_EQ(d.pixels, 2u);
+  EXPECT_DOUBLE_EQ(d.own, 3.0);
+  EXPECT_DOUBLE_EQ(d.reused, 2.0);
 }
 
-TEST(ReuseSwitch, OnWhereTheVarianceFallsMoreThanTheCostRises) {
+TEST(ReuseSwitch, WithAdaptiveSamplingThePixelsDeviationsDecide) {
+  // One very noisy pixel reuse leaves alone (variance 100) and ten whose variance it cuts from
+  // 1 to 0.01, at 1.5 times the cost. The mean variance falls only to 0.91 of what it was
+  // (1.37 per unit of time: off); the sum of deviations from 20 to 11 ((11 / 20)^2 x 1.5 =
+  // 0.45: on), and with adaptive sampling the latter is what the error follows.
+  ReusePixelMoments pixels(11);
+  pixels.add(0, 100, 0);
+  for (size_t p = 1; p <= 10; ++p) pixels.add(p, 1, 0.99);
+  const ReuseMoments mean = moments(110.0 / 11, 100.1 / 11, 10000, 1.5);
+  ReuseSwitch uniform, adaptive;
+  uniform.after_reuse_pass(mean, 2.0);
+  adaptive.after_reuse_pass(mean, 2.0, 0.0, &pixels);
+  EXPECT_FALSE(uniform.on());
+  EXPECT_TRUE(adaptive.on());
+}
+
+TEST(ReuseSwitch, StartsOn) {
+  ReuseSwitch s;
+  EXPECT_TRUE(s.next_on(0.0));
+  EXPECT_TRUE(s.on());
+  EXPECT_FALSE(s.probing());
+}
+
+TEST(ReuseSwitch, StaysOnWhereTheVarianceFallsMoreThanTheCostRises) {
   // Variance 0.4 of 1 at twice the cost: 0.8 of the squared error per unit of time.
   ReuseSwitch s;
-  s.after_reuse_pass(moments(1.0, 0.4, 10000), 1.5, 2.0);
+  s.after_reuse_pass(moments(1.0, 0.4, 10000, 2.0), 1.5);
   EXPECT_TRUE(s.on());
   EXPECT_FALSE(s.probing());
   EXPECT_TRUE(s.next_on(1.5));
-  // Later passes may show otherwise: the same moments again at three times the cost.
-  s.after_reuse_pass(moments(1.0, 0.4, 10000), 3.0, 3.0);
+  // Later passes may show otherwise: they weigh as much as the first, and at four times the
+  // cost the two together (three times) give 1.2.
+  s.after_reuse_pass(moments(1.0, 0.4, 10000, 4.0), 3.0);
   EXPECT_FALSE(s.on());
 }
 
 TEST(ReuseSwitch, OffWhereItDoesNotPayAndProbedAgainWhenTheSamplesDouble) {
   ReuseSwitch s;
-  s.after_reuse_pass(moments(1.0, 0.4, 10000), 3.0, 3.0);  // 1.2 of the error per time
+  s.after_reuse_pass(moments(1.0, 0.4, 10000, 3.0), 3.0);  // 1.2 of the error per time
   EXPECT_FALSE(s.on());
+  EXPECT_TRUE(s.probing());
   EXPECT_FALSE(s.next_on(5.9));
   EXPECT_TRUE(s.next_on(6.0));
-  // Nothing gained (no diffuse first hits) at a cost within noise of none: stays off.
+  // A probe that finds it paying after all (both passes together: variance 0.25 at 2.375
+  // times the cost, 0.59): on.
+  s.after_reuse_pass(moments(1.0, 0.1, 10000, 1.75), 7.0);
+  EXPECT_TRUE(s.on());
+  // Whole passes that cost more than the pools' share says: the larger ratio decides (variance
+  // 0.4 at 2.5 times the cost, where the pools alone say 2).
+  ReuseSwitch whole;
+  whole.after_reuse_pass(moments(1.0, 0.4, 10000, 2.0), 1.5, 1.5);
+  EXPECT_TRUE(whole.on());
+  whole.after_reuse_pass(moments(1.0, 0.4, 10000, 2.0), 3.0, 2.5);
+  EXPECT_FALSE(whole.on());
+  // Nothing gained (no diffuse first hits) at hardly any cost: off.
   ReuseSwitch level;
-  level.after_reuse_pass(moments(1.0, 1.0, 10000), 2.0, 0.97);
+  level.after_reuse_pass(moments(1.0, 1.0, 10000, 1.02), 2.0);
   EXPECT_FALSE(level.on());
 }
 
-TEST(ReuseSwitch, UndecidedUntilItHasEnoughSamplesAndBothCosts) {
+TEST(ReuseSwitch, StaysOnUntilItHasEnoughSamplesAndACost) {
+  // Moments that say off, but too few of them, then enough without a time.
   ReuseSwitch s;
-  s.after_reuse_pass(moments(1.0, 0.1, ReuseSwitch::kMinSamples - 1), 1.2, 2.0);
-  EXPECT_FALSE(s.on());
-  EXPECT_TRUE(s.next_on(1.2));                         // probes again at once
-  s.after_reuse_pass(moments(1.0, 0.1, 1), 1.4, 0.0);  // enough samples, no cost ratio yet
-  EXPECT_FALSE(s.on());
-  EXPECT_TRUE(s.next_on(1.4));
-  s.after_reuse_pass(moments(1.0, 0.1, 1), 1.6, 2.0);
+  s.after_reuse_pass(moments(1.0, 1.0, ReuseSwitch::kMinSamples - 1, 2.0), 1.2);
   EXPECT_TRUE(s.on());
+  // Enough samples but no time measured (a pass too short for the clock): on.
+  ReuseMoments untimed = moments(1.0, 1.0, ReuseSwitch::kMinSamples, 2.0);
+  untimed.traced_ms = untimed.pool_ms = 0;
+  ReuseSwitch t;
+  t.after_reuse_pass(untimed, 1.2);
+  EXPECT_TRUE(t.on());
+  t.after_reuse_pass(moments(1.0, 1.0, 1, 2.0), 1.4);  // now both: off
+  EXPECT_FALSE(t.on());
 }
 
 RenderSettings box_settings() {
@@ -102,6 +168,7 @@ RenderSettings box_settings() {
   s.max_bounces = 8;
   s.seed = 3;
   s.quality.path_reuse = QualityOptions::kReusePool;
+  s.quality.path_reuse_auto = false;  // in every pass, fixed counts too
   return s;
 }
 
@@ -158,7 +225,7 @@ TEST(ReuseSwitch, FixedSampleCountsTraceWithoutReuse) {
     for (int x = 0; x < a.width(); ++x) ASSERT_EQ(a.at(x, y), b.at(x, y)) << x << " " << y;
 }
 
-TEST(ReuseSwitch, FrameBudgetRenderingProbesAndDecides) {
+TEST(ReuseSwitch, FrameBudgetRenderingStartsWithReuseAndMeasuresIt) {
   const Scene scene = testing::point_lit_box();
   EmbreeNativeAccel accel;
   accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
@@ -172,18 +239,24 @@ TEST(ReuseSwitch, FrameBudgetRenderingProbesAndDecides) {
     Film film(s.width, s.height);
     FrameBudgetRenderer budget(renderer, 5.0);
     EXPECT_EQ(budget.reuse_auto(), bounces > 1) << bounces;  // one bounce: nothing to share
-    PassStats total;
+    const PassStats first = budget.render_frame(film).stats;
+    PassStats total = first;
     for (int frame = 0; frame < 200 && total.samples < 8u * 40 * 30; ++frame)
       total.accumulate(budget.render_frame(film).stats);
     if (bounces == 1) {
       EXPECT_EQ(total.reused_samples, 0u);
       continue;
     }
-    // At least one probe of a film that had a sample per pixel; its moments are the switch's.
-    EXPECT_GT(total.reused_samples, 0u);
-    EXPECT_LT(total.reused_samples, total.samples);  // never before the first sample per pixel
+    EXPECT_GT(first.reused_samples, 0u);  // from the first pass on
+    // The switch's moments are all those of the passes with reuse, less the samples of pixels
+    // that had none before (the first pass's).
     EXPECT_EQ(budget.reuse_switch().moments().samples, total.reuse.samples);
     EXPECT_GT(total.reuse.samples, 0u);
+    EXPECT_LT(total.reuse.samples, total.reused_samples);
+    // And their costs: the pools' connection rays are a share of the passes' time.
+    EXPECT_GT(total.reuse.pool_ms, 0.0);
+    EXPECT_LT(total.reuse.pool_ms, total.reuse.traced_ms);
+    EXPECT_GT(total.reuse.cost_ratio(), 1.0);
   }
 }
 
