@@ -8,18 +8,18 @@
 
 namespace tuneray {
 
-FrameBudgetRenderer::FrameBudgetRenderer(TileRenderer& renderer, double frame_ms)
+FrameBudgetRenderer::FrameBudgetRenderer(TileRenderer& renderer, double frame_ms,
+                                         const ReuseSwitch& reuse)
     : renderer_(renderer),
       frame_ms_(frame_ms),
       reuse_auto_(renderer.settings().quality.path_reuse_auto &&
-                  renderer.integrator().reuse_pool_pixels() > 0) {
+                  renderer.integrator().reuse_pool_pixels() > 0),
+      reuse_switch_(reuse) {
   if (!reuse_auto_) return;
   renderer_.set_path_reuse(reuse_switch_.next_on(0));
   const RenderSettings& s = renderer.settings();
-  if (s.quality.adaptive) {
+  if (s.quality.adaptive)
     reuse_pixels_.resize(static_cast<size_t>(s.width) * static_cast<size_t>(s.height));
-    renderer_.set_reuse_pixels(&reuse_pixels_);
-  }
 }
 
 FrameBudgetRenderer::~FrameBudgetRenderer() {
@@ -126,6 +126,9 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film, double reserved_ms) {
   };
   FrameResult frame;
   bool first_pass = true;
+  // Set each frame: the caller may have replaced the renderer (ProgressiveView::set_accel).
+  const bool per_pixel = reuse_auto_ && s.quality.adaptive;
+  if (per_pixel) renderer_.set_reuse_pixels(&reuse_pixels_);
   for (;;) {
     const bool adaptive = adaptive_ready();
     const double film_spp = static_cast<double>(film_samples_) / pixels;
@@ -149,7 +152,7 @@ FrameResult FrameBudgetRenderer::render_frame(Film& film, double reserved_ms) {
     if (reuse_auto_ && reuse)
       reuse_switch_.after_reuse_pass(pass.reuse, static_cast<double>(film_samples_) / pixels,
                                      pass_cost_ratio(adaptive),
-                                     s.quality.adaptive ? &reuse_pixels_ : nullptr);
+                                     per_pixel ? &reuse_pixels_ : nullptr);
     frame.stats.accumulate(pass);
     first_pass = false;
   }

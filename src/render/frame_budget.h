@@ -23,7 +23,11 @@ class FrameBudgetRenderer {
  public:
   // Switches `renderer`'s path reuse (TileRenderer::set_path_reuse) when its settings ask for
   // the automatic choice; leaves it alone otherwise.
-  FrameBudgetRenderer(TileRenderer& renderer, double frame_ms);
+  // `reuse`: the path-reuse switch to start from, e.g. the one of the same scene's previous
+  // view (what pays depends on the scene far more than on the camera; the viewer keeps it across
+  // camera moves, so a moving camera is not traced with reuse where it was found not to pay).
+  FrameBudgetRenderer(TileRenderer& renderer, double frame_ms,
+                      const ReuseSwitch& reuse = ReuseSwitch{});
   ~FrameBudgetRenderer();
   // The renderer writes into this object's per-pixel reuse moments while it lives.
   FrameBudgetRenderer(const FrameBudgetRenderer&) = delete;

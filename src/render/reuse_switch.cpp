@@ -62,6 +62,7 @@ void ReuseSwitch::after_reuse_pass(const ReuseMoments& pass, double film_spp,
   double own = moments_.own_variance(), reused = moments_.reused_variance();
   if (pixels) {
     const ReusePixelMoments::Deviations d = pixels->deviations();
+    if (d.pixels == 0) return;  // a new view's first pass: its pixels had no mean yet
     own = d.own * d.own;
     reused = d.reused * d.reused;
   }

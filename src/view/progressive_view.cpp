@@ -45,9 +45,10 @@ FrameResult ProgressiveView::render_frame() {
 void ProgressiveView::set_camera(const CameraDesc& camera) {
   camera_ = camera;
   // Moving the camera keeps the integrator and its lights: only the film and the budget's
-  // per-film bookkeeping start over.
+  // per-film bookkeeping start over. Whether path reuse pays is the scene's: that is kept.
   renderer_->set_camera(camera);
-  budget_.emplace(*renderer_, frame_ms_);
+  const ReuseSwitch reuse = budget_->reuse_switch();
+  budget_.emplace(*renderer_, frame_ms_, reuse);
   resolver_.camera_moved();
   film_.clear();
   film_samples_ = 0;

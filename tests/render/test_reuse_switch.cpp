@@ -159,6 +159,11 @@ TEST(ReuseSwitch, StaysOnUntilItHasEnoughSamplesAndACost) {
   EXPECT_TRUE(t.on());
   t.after_reuse_pass(moments(1.0, 1.0, 1, 2.0), 1.4);  // now both: off
   EXPECT_FALSE(t.on());
+  // With adaptive sampling, pixels with a mean are needed too (a new view's first pass has none).
+  ReuseSwitch v;
+  const ReusePixelMoments no_pixels(4);
+  v.after_reuse_pass(moments(1.0, 1.0, ReuseSwitch::kMinSamples, 2.0), 1.0, 0.0, &no_pixels);
+  EXPECT_TRUE(v.on());
 }
 
 RenderSettings box_settings() {
@@ -258,6 +263,33 @@ TEST(ReuseSwitch, FrameBudgetRenderingStartsWithReuseAndMeasuresIt) {
     EXPECT_LT(total.reuse.pool_ms, total.reuse.traced_ms);
     EXPECT_GT(total.reuse.cost_ratio(), 1.0);
   }
+}
+
+TEST(ReuseSwitch, AFrameBudgetRendererStartsFromTheSwitchItIsGiven) {
+  // A view's camera moved: the switch of the scene's earlier view, which found reuse not to pay
+  // and probes again at 2,000 spp, is where the new one starts.
+  const Scene scene = testing::point_lit_box();
+  EmbreeNativeAccel accel;
+  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+               scene.triangles.size()});
+  RenderSettings s = box_settings();
+  s.quality.path_reuse_auto = true;
+  ReuseSwitch earlier;
+  earlier.after_reuse_pass(moments(1.0, 1.0, 10000, 2.0), 1000.0);
+  ASSERT_FALSE(earlier.on());
+  const PcgSampler sampler(5);
+  TileRenderer renderer(scene, accel, scene.cameras.at(0), s, sampler);
+  Film film(s.width, s.height);
+  FrameBudgetRenderer budget(renderer, 5.0, earlier);
+  PassStats total;
+  for (int frame = 0; frame < 3; ++frame) total.accumulate(budget.render_frame(film).stats);
+  EXPECT_GT(total.samples, 0u);
+  EXPECT_EQ(total.reused_samples, 0u);
+  EXPECT_FALSE(budget.reuse_switch().on());
+  // A fresh one starts on.
+  Film fresh_film(s.width, s.height);
+  FrameBudgetRenderer fresh(renderer, 5.0);
+  EXPECT_GT(fresh.render_frame(fresh_film).stats.reused_samples, 0u);
 }
 
 }  // namespace
