@@ -30,7 +30,7 @@ void set_unbiased(QualitySwitches& s) {
   QualityOptions& o = s.quality;
   o.wavefront = o.sky_rgba = o.branchless_materials = o.adaptive = o.bsdf_sky = true;
   o.sampler = SamplerKind::kBlueNoise;
-  set_reuse(o);
+  set_reuse(o, true);  // as the defaults: where it pays
   s.one_texel = true;
 }
 
