@@ -58,15 +58,19 @@ void ReuseSwitch::after_reuse_pass(const ReuseMoments& pass, double film_spp,
   moments_.add(pass);
   const double pools = moments_.cost_ratio();
   if (moments_.samples < kMinSamples || pools <= 0) return;  // undecided: as it is
-  const double ratio = std::max(pools, pass_cost_ratio);
-  double own = moments_.own_variance(), reused = moments_.reused_variance();
-  if (pixels) {
-    const ReusePixelMoments::Deviations d = pixels->deviations();
-    if (d.pixels == 0) return;  // a new view's first pass: its pixels had no mean yet
-    own = d.own * d.own;
-    reused = d.reused * d.reused;
+  if (static_cast<double>(moments_.samples) >=
+      kRedecideGrowth * static_cast<double>(decided_samples_)) {
+    const double ratio = std::max(pools, pass_cost_ratio);
+    double own = moments_.own_variance(), reused = moments_.reused_variance();
+    if (pixels) {
+      const ReusePixelMoments::Deviations d = pixels->deviations();
+      if (d.pixels == 0) return;  // a new view's first pass: its pixels had no mean yet
+      own = d.own * d.own;
+      reused = d.reused * d.reused;
+    }
+    on_ = own > 0 && ratio * reused < (1 - kMinGain) * own;
+    decided_samples_ = moments_.samples;
   }
-  on_ = own > 0 && ratio * reused < (1 - kMinGain) * own;
   next_probe_spp_ = on_ ? 0 : 2 * film_spp;
 }
 

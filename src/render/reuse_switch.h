@@ -73,8 +73,9 @@ struct ReuseMoments {
 // (n_p proportional to sigma_p), so the squared error of the image, sum sigma_p^2 / n_p, goes as
 // (sum sigma_p)^2 over the samples taken. Reuse that lowers the variance of many moderately
 // noisy pixels (indirect light on walls) and leaves a few very noisy ones alone (a caustic)
-// changes that sum far more than the mean variance: on cornell-box-water it halves the error
-// with adaptive sampling and raises it without (docs/quality.md, fifty-first session).
+// changes that sum far more than the mean variance: on cornell-box-water it lowers the error
+// at equal time by an eighth with adaptive sampling and raises it by as much without
+// (docs/quality.md, fifty-first session).
 // A pixel is written by one thread per pass (the schedulers' chunks hold whole pixels).
 class ReusePixelMoments {
  public:
@@ -108,8 +109,12 @@ class ReusePixelMoments {
 // and a decision taken on few samples is revisited).
 class ReuseSwitch {
  public:
-  // Samples in the moments before a decision is trusted; fewer and the next pass probes again.
+  // Samples in the moments before a decision is trusted; fewer and the switch stays as it is.
   static constexpr uint64_t kMinSamples = 4096;
+  // A decision is taken again once the moments hold this many times the samples of the last
+  // one: summing a large image's pixel deviations after every pass would cost a 60 fps frame
+  // several milliseconds, and a few more samples hardly move the sums.
+  static constexpr double kRedecideGrowth = 1.25;
   // The share of the error per unit of time reuse must save to be switched on: where it changes
   // nothing (no diffuse first hits) the two costs differ by noise alone.
   static constexpr double kMinGain = 0.05;
@@ -124,7 +129,8 @@ class ReuseSwitch {
   // when known, the cost ratio of whole passes with and without reuse (0 if not). The moments'
   // own ratio counts only the pools' time, so it is a lower bound (on cornell-box-original
   // 1.9 where whole renders take 2.5x): the larger of the two decides. Until the moments hold
-  // kMinSamples samples and a time, the switch stays as it is.
+  // kMinSamples samples and a time, the switch stays as it is; after a decision, until they
+  // hold kRedecideGrowth times as many.
   // With `pixels` (renders with adaptive sampling) the variances compared are the squared sums
   // of the pixels' deviations, (sum sigma_p)^2, else the moments' weighted mean variances.
   void after_reuse_pass(const ReuseMoments& pass, double film_spp, double pass_cost_ratio = 0,
@@ -135,6 +141,7 @@ class ReuseSwitch {
   ReuseMoments moments_;
   bool on_ = true;
   double next_probe_spp_ = 0;
+  uint64_t decided_samples_ = 0;  // the moments' samples at the last decision
 };
 
 }  // namespace tuneray

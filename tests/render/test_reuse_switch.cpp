@@ -140,6 +140,16 @@ TEST(ReuseSwitch, OffWhereItDoesNotPayAndProbedAgainWhenTheSamplesDouble) {
   EXPECT_TRUE(whole.on());
   whole.after_reuse_pass(moments(1.0, 0.4, 10000, 2.0), 3.0, 2.5);
   EXPECT_FALSE(whole.on());
+  // A probe that adds too few samples to move the moments is no new decision; it only sets
+  // the next probe (at twice the film's samples).
+  s.after_reuse_pass(moments(0.0, 0.0, 100, 1.0), 20.0);
+  EXPECT_TRUE(s.on());
+  s.after_reuse_pass(moments(1.0, 1.0, 10000, 4.0), 30.0);
+  EXPECT_FALSE(s.on());
+  s.after_reuse_pass(moments(1.0, 0.0, 100, 1.0), 70.0);
+  EXPECT_FALSE(s.on());
+  EXPECT_FALSE(s.next_on(139.0));
+  EXPECT_TRUE(s.next_on(140.0));
   // Nothing gained (no diffuse first hits) at hardly any cost: off.
   ReuseSwitch level;
   level.after_reuse_pass(moments(1.0, 1.0, 10000, 1.02), 2.0);
