@@ -172,10 +172,7 @@ PassStats TileRenderer::run(Film& film, const PixelWork& work,
   // on the order in which threads finish.
   const ClampThresholds clamp = clamp_for(film);
   PixelWork pass = work;
-  if (reuse_pool() > 0) {
-    pass.reuse_clip = ReuseMoments::clip_length(film.mean_value_length());
-    pass.reuse_pixels = reuse_pixels_;
-  }
+  if (reuse_pool() > 0) pass.reuse_clip = ReuseMoments::clip_length(film.mean_value_length());
   PassStats stats;
   if (settings_.quality.wavefront) {
     stats = run_wavefront(film, pass, clamp);
@@ -365,7 +362,7 @@ void TileRenderer::add_work_time(PathCounters& local, uint64_t ns) const {
   if (reuse_pool() > 0) local.reuse.traced_ms += static_cast<double>(ns) * 1e-6;
 }
 
-void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, const PixelWork& work,
+void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, float reuse_clip,
                                PathCounters& local) const {
   // Each pixel's samples are consecutive slots, in index order, as a lone path loop adds them;
   // each goes straight to the film (its record is in the cache after the first).
@@ -377,7 +374,7 @@ void TileRenderer::add_to_film(const WaveBuffers& b, Film& film, const PixelWork
     const PixelSampleId& id = b.ids[k];
     const int x = static_cast<int>(id.x), y = static_cast<int>(id.y);
     if (reused)
-      local.reuse.add_sample(film, x, y, b.own[k], b.result[k], work.reuse_clip, work.reuse_pixels);
+      local.reuse.add_sample(film, x, y, b.own[k], b.result[k], reuse_clip, reuse_pixels_);
     film.add_sample(x, y, b.result[k], id.index);
   }
   if (reused) local.reused_samples += b.ids.size();
@@ -415,7 +412,7 @@ PassStats TileRenderer::run_tiles(Film& film, const PixelWork& work, const Clamp
           if (!b.ids.empty()) {
             start_paths(b, clamp);
             trace_paths(b, false, local);
-            add_to_film(b, film, work, local);
+            add_to_film(b, film, work.reuse_clip, local);
             local_samples += b.ids.size();
           }
           if (timed) add_work_time(local, now_ns() - t0);
@@ -489,7 +486,7 @@ PassStats TileRenderer::run_wavefront(Film& film, const PixelWork& work,
                         if (!b.ids.empty()) {
                           start_paths(b, clamp);
                           trace_paths(b, true, local);
-                          add_to_film(b, film, work, local);
+                          add_to_film(b, film, work.reuse_clip, local);
                         }
                         if (timed) add_work_time(local, now_ns() - t_chunk);
                       }

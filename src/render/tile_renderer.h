@@ -105,10 +105,8 @@ class TileRenderer {
       return extra ? film->samples(static_cast<int>(x), static_cast<int>(y)) : uniform_first;
     }
     uint32_t count(size_t i) const { return extra ? (*extra)[i] : uniform_count; }
-    // Passes with path reuse: the length at which ReuseMoments clip a sample's deviation, and
-    // where its moments go pixel by pixel (if anywhere).
+    // Passes with path reuse: the length at which ReuseMoments clip a sample's deviation.
     float reuse_clip = 0;
-    ReusePixelMoments* reuse_pixels = nullptr;
   };
   PassStats run(Film& film, const PixelWork& work, const std::function<void()>& on_tile_done) const;
   PassStats run_tiles(Film& film, const PixelWork& work, const ClampThresholds& clamp,
@@ -120,7 +118,7 @@ class TileRenderer {
   // to the film, each pixel's samples in index order.
   void start_paths(WaveBuffers& b, const ClampThresholds& clamp) const;
   void trace_paths(WaveBuffers& b, bool batched, PathCounters& counters) const;
-  void add_to_film(const WaveBuffers& b, Film& film, const PixelWork& work,
+  void add_to_film(const WaveBuffers& b, Film& film, float reuse_clip,
                    PathCounters& counters) const;
   // Path reuse: the wave's pools gathered (path_reuse.h), then every path's value taken.
   void reuse_and_finish(WaveBuffers& b, PathCounters& counters) const;

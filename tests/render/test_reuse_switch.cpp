@@ -176,6 +176,16 @@ TEST(ReuseSwitch, StaysOnUntilItHasEnoughSamplesAndACost) {
   EXPECT_TRUE(v.on());
 }
 
+// The point-lit box (render_helpers.h) on Embree's BVH.
+struct PointLitBox {
+  Scene scene = testing::point_lit_box();
+  EmbreeNativeAccel accel;
+  PointLitBox() {
+    accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
+                 scene.triangles.size()});
+  }
+};
+
 RenderSettings box_settings() {
   RenderSettings s;
   s.width = 40;
@@ -200,10 +210,9 @@ TEST(ReuseSwitch, PassMomentsAgreeWithEachFilmsVariance) {
   // The moments of reuse passes against an independent estimate: the variance among each
   // pixel's samples of a film rendered with reuse, and of one rendered without it from the same
   // random numbers (whose samples are the reuse passes' own estimates).
-  const Scene scene = testing::point_lit_box();
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
+  const PointLitBox box;
+  const Scene& scene = box.scene;
+  const EmbreeNativeAccel& accel = box.accel;
   RenderSettings off_settings = box_settings();
   off_settings.quality.path_reuse = 0;
   const PcgSampler sampler(7);
@@ -241,10 +250,9 @@ TEST(ReuseSwitch, FixedSampleCountsTraceWithoutReuse) {
 }
 
 TEST(ReuseSwitch, FrameBudgetRenderingStartsWithReuseAndMeasuresIt) {
-  const Scene scene = testing::point_lit_box();
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
+  const PointLitBox box;
+  const Scene& scene = box.scene;
+  const EmbreeNativeAccel& accel = box.accel;
   for (const int bounces : {8, 1}) {
     RenderSettings s = box_settings();
     s.max_bounces = bounces;
@@ -278,10 +286,9 @@ TEST(ReuseSwitch, FrameBudgetRenderingStartsWithReuseAndMeasuresIt) {
 TEST(ReuseSwitch, AFrameBudgetRendererStartsFromTheSwitchItIsGiven) {
   // A view's camera moved: the switch of the scene's earlier view, which found reuse not to pay
   // and probes again at 2,000 spp, is where the new one starts.
-  const Scene scene = testing::point_lit_box();
-  EmbreeNativeAccel accel;
-  accel.build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
-               scene.triangles.size()});
+  const PointLitBox box;
+  const Scene& scene = box.scene;
+  const EmbreeNativeAccel& accel = box.accel;
   RenderSettings s = box_settings();
   s.quality.path_reuse_auto = true;
   ReuseSwitch earlier;
