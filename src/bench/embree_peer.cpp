@@ -105,19 +105,8 @@ Image embree_output_transform(const Image& linear) {
   return out;
 }
 
-Scene embree_cornell_scene(const EmbreePeer& peer) {
-  std::filesystem::path obj = std::filesystem::path(peer.scene).replace_extension(".obj");
-  Scene scene = load_scene(obj.string());
-  for (Material& m : scene.materials) m.emission = Color(0.0f);
-  scene.point_lights = {{Vec3f(213, 300, 227), Color(100000.0f)}};
-  scene.environment = Environment{};
-  CameraDesc cam;
-  cam.position = {278, 273, -800};
-  cam.target = {278, 273, 0};
-  cam.up = {0, 1, 0};
-  cam.vfov_deg = 37;
-  scene.cameras = {cam};
-  return scene;
+Scene embree_peer_scene(const EmbreePeer& peer) {
+  return load_scene(peer.scene);
 }
 
 }  // namespace tuneray

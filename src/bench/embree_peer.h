@@ -38,8 +38,8 @@ void embree_peer_render(const EmbreePeer& peer, int spp, const std::string& path
 // each channel clamped to [0,1], then floor(255.01 x) / 255.
 Image embree_output_transform(const Image& linear);
 
-// Embree's Cornell box as its pathtracer sees it: the OBJ next to `ecs`, the .ecs point light
-// and camera, and no emissive materials (its OBJ light material is not emissive there).
-Scene embree_cornell_scene(const EmbreePeer& peer);
+// The peer's scene as its pathtracer sees it: the .ecs file's meshes, lights and camera
+// (load_ecs_scene: no emissive materials, as its OBJ light material does not emit there).
+Scene embree_peer_scene(const EmbreePeer& peer);
 
 }  // namespace tuneray

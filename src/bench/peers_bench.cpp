@@ -126,7 +126,7 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
   }
   Image embree_truth = read_image(result.embree_reference);
 
-  Scene scene = embree_cornell_scene(o.peer);
+  Scene scene = embree_peer_scene(o.peer);
   std::unique_ptr<Accel> accel = make_accel(o.accel, o.bvh);
   accel->build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
                 scene.triangles.size()});

@@ -63,7 +63,7 @@ Scene load_mesh_file(const std::string& path) {
   if (format == "obj") return load_obj(path);
   if (!format.empty()) return load_with_assimp(path);
   throw SceneError(path + ": unknown scene file extension '" + lower_extension(path) +
-                   "' (expected .obj, .ply, .gltf, .glb or .json, or a built-in name)");
+                   "' (expected .obj, .ply, .gltf, .glb, .json or .ecs, or a built-in name)");
 }
 
 Scene load_scene(const std::string& spec, const LoadOptions& options) {
@@ -72,6 +72,8 @@ Scene load_scene(const std::string& spec, const LoadOptions& options) {
     scene = make_builtin_scene(spec);
   else if (lower_extension(spec) == ".json")
     scene = load_json_scene(spec, options);
+  else if (lower_extension(spec) == ".ecs")
+    scene = load_ecs_scene(spec);
   else
     scene = load_mesh_file(spec);
   finalize_scene(scene);

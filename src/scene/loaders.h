@@ -14,6 +14,10 @@ Scene load_with_assimp(const std::string& path);
 // A mesh file by its (case-insensitive) extension: .obj, .ply, .gltf, .glb; "" for others.
 std::string mesh_format(const std::string& path);
 Scene load_mesh_file(const std::string& path);
+// Embree's tutorial scene files (.ecs): -i meshes (.obj, .ply, .gltf, .glb; paths relative to the
+// file), -pointlight, -ambientlight and the -vp/-vi/-vd/-vu/-fov camera. The meshes' own emission
+// is dropped, as Embree's pathtracer lights such a scene only by the file's lights.
+Scene load_ecs_scene(const std::string& path);
 Scene load_json_scene(const std::string& path, const LoadOptions& options);
 // Throws SceneError for an unknown name.
 Scene make_builtin_scene(const std::string& name);
