@@ -86,6 +86,30 @@ TEST(ReuseSwitch, PixelMomentsSumEachPixelsDeviation) {
   EXPECT_DOUBLE_EQ(d.reused, 2.0);
 }
 
+TEST(ReuseSwitch, PixelDeviationsOfAWholeFilmMatchThePixelByPixelSums) {
+  // 37 pixels (four blocks of eight and a tail), some without samples, some whose reused
+  // variance would be negative: the sums agree with each pixel's own arithmetic in double.
+  ReusePixelMoments pixels(37);
+  double own = 0, reused = 0;
+  size_t with_samples = 0;
+  for (size_t p = 0; p < 37; ++p) {
+    const int count = static_cast<int>(p % 5);  // 0 .. 4 samples
+    const double o = 0.5 + static_cast<double>((p * 7) % 11), r = (p % 3 == 0) ? o + 1 : 0.3 * o;
+    for (int k = 0; k < count; ++k) pixels.add(p, o, o - r);
+    if (count == 0) continue;
+    ++with_samples;
+    // The film's sums are floats: take them as stored.
+    const double own_sum = static_cast<float>(static_cast<float>(o) * count);
+    const double removed_sum = static_cast<float>(static_cast<float>(o - r) * count);
+    own += std::sqrt(own_sum / count);
+    reused += std::sqrt(std::max(0.0, (own_sum - removed_sum) / count));
+  }
+  const ReusePixelMoments::Deviations d = pixels.deviations();
+  EXPECT_EQ(d.pixels, with_samples);
+  EXPECT_NEAR(d.own, own, 1e-5 * own);
+  EXPECT_NEAR(d.reused, reused, 1e-5 * reused);
+}
+
 TEST(ReuseSwitch, WithAdaptiveSamplingThePixelsDeviationsDecide) {
   // One very noisy pixel reuse leaves alone (variance 100) and ten whose variance it cuts from
   // 1 to 0.01, at 1.5 times the cost. The mean variance falls only to 0.91 of what it was
