@@ -11,7 +11,6 @@
 #include <stdexcept>
 
 #include "image/atomic_file.h"
-#include "scene/load.h"
 
 namespace tuneray {
 
@@ -103,10 +102,6 @@ Image embree_output_transform(const Image& linear) {
     out.data()[i] = Color(quantise(c.x), quantise(c.y), quantise(c.z));
   }
   return out;
-}
-
-Scene embree_peer_scene(const EmbreePeer& peer) {
-  return load_scene(peer.scene);
 }
 
 }  // namespace tuneray

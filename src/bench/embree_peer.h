@@ -1,17 +1,17 @@
 // Embree's tutorial path tracer (package embree-tools) as the peer our renders are measured
 // against: finding it, timing its frames with its --benchmark mode, rendering its images with
-// -o, and its Cornell box (cornell_box.ecs) as our renderer sees the same scene.
+// -o, on its Cornell box (cornell_box.ecs).
 #pragma once
 
 #include <string>
 
 #include "image/image.h"
-#include "scene/scene.h"
 
 namespace tuneray {
 
 struct EmbreePeer {
   std::string binary = "/usr/bin/pathtracer";
+  // Its scene file; load_scene reads it as the pathtracer does (scene/ecs_loader.cpp).
   std::string scene = "/usr/share/doc/embree3/models/cornell_box.ecs";
   int width = 320, height = 240;
   int max_path_length = 8;  // equals our max_bounces (the converged images agree at equal values)
@@ -37,9 +37,5 @@ void embree_peer_render(const EmbreePeer& peer, int spp, const std::string& path
 // The pathtracer's output transform on our linear image, for a like-for-like comparison:
 // each channel clamped to [0,1], then floor(255.01 x) / 255.
 Image embree_output_transform(const Image& linear);
-
-// The peer's scene as its pathtracer sees it: the .ecs file's meshes, lights and camera
-// (load_ecs_scene: no emissive materials, as its OBJ light material does not emit there).
-Scene embree_peer_scene(const EmbreePeer& peer);
 
 }  // namespace tuneray

@@ -17,6 +17,7 @@
 #include "bench/shown_frames.h"
 #include "image/io.h"
 #include "image/metrics.h"
+#include "scene/load.h"
 #include "tuning/stats.h"
 
 namespace tuneray {
@@ -126,7 +127,7 @@ PeersResult run_peers_bench(const PeersBenchOptions& o, const PeersProgress& pro
   }
   Image embree_truth = read_image(result.embree_reference);
 
-  Scene scene = embree_peer_scene(o.peer);
+  Scene scene = load_scene(o.peer.scene);
   std::unique_ptr<Accel> accel = make_accel(o.accel, o.bvh);
   accel->build({scene.positions.data(), scene.positions.size(), scene.triangles.data(),
                 scene.triangles.size()});

@@ -87,7 +87,7 @@ EmbreeComparison compare_with_embree(const RenderBenchOptions& a) {
   peer.max_path_length = a.max_bounces;
   c.error = embree_peer_missing(peer);
   if (!c.error.empty()) return c;
-  const Scene scene = embree_peer_scene(peer);
+  const Scene scene = load_scene(peer.scene);
   TimedRenderer ours(scene, a);
   std::vector<double> our_mrays, embree_mrays;
   for (int r = 0; r < a.repeats; ++r) {

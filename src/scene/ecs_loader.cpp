@@ -49,6 +49,12 @@ class EcsTokens {
     const float x = number(option), y = number(option);
     return {x, y, number(option)};
   }
+  Color light(const std::string& option) {
+    const Vec3f rgb = vec3(option);
+    if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0)
+      throw SceneError(path_ + ": " + option + " has a negative colour");
+    return Color(rgb.x, rgb.y, rgb.z);
+  }
 
  private:
   std::string path_;
@@ -64,12 +70,12 @@ Scene load_ecs_scene(const std::string& path) {
   EcsTokens tokens(path, in);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
 
+  // Meshes bring no lights, sky or cameras of their own (append_geometry): the file's are the
+  // scene's.
   Scene scene;
-  std::vector<PointLight> lights;
-  Color ambient(0.0f);
   CameraDesc camera;
   std::optional<Vec3f> direction;  // -vd: the view direction instead of a point looked at
-  bool has_view = false, has_target = false;
+  bool camera_given = false;       // -vp, -vi or -vd (else the automatic camera)
   while (!tokens.done()) {
     std::string option = tokens.word("");
     // Embree's tutorials take both -name and --name.
@@ -85,25 +91,19 @@ Scene load_ecs_scene(const std::string& path) {
       append_geometry(scene, load_mesh_file(mesh.string()));
     } else if (name == "pointlight") {
       const Vec3f position = tokens.vec3(option);
-      const Vec3f rgb = tokens.vec3(option);
-      if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0)
-        throw SceneError(path + ": " + option + " has a negative intensity");
-      lights.push_back({position, Color(rgb.x, rgb.y, rgb.z)});
+      scene.point_lights.push_back({position, tokens.light(option)});
     } else if (name == "ambientlight") {
-      const Vec3f rgb = tokens.vec3(option);
-      if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0)
-        throw SceneError(path + ": " + option + " has a negative radiance");
-      ambient = ambient + Color(rgb.x, rgb.y, rgb.z);
+      scene.environment.constant = scene.environment.constant + tokens.light(option);
     } else if (name == "vp") {
       camera.position = tokens.vec3(option);
-      has_view = true;
+      camera_given = true;
     } else if (name == "vi") {
       camera.target = tokens.vec3(option);
       direction.reset();
-      has_target = true;
+      camera_given = true;
     } else if (name == "vd") {
       direction = tokens.vec3(option);  // the target follows once the position is known
-      has_target = true;
+      camera_given = true;
     } else if (name == "vu") {
       camera.up = tokens.vec3(option);
     } else if (name == "fov") {
@@ -118,7 +118,7 @@ Scene load_ecs_scene(const std::string& path) {
   }
   if (scene.triangles.empty()) throw SceneError(path + ": no -i mesh with triangles");
   if (direction) camera.target = camera.position + *direction;
-  if (has_view || has_target) {
+  if (camera_given) {
     if (length(camera.target - camera.position) == 0.0f)
       throw SceneError(path + ": the camera looks at its own position (-vp equals -vi)");
     if (length(cross(camera.target - camera.position, camera.up)) == 0.0f)
@@ -127,9 +127,6 @@ Scene load_ecs_scene(const std::string& path) {
   }
   // Embree's pathtracer lights a scene only by these lights: its OBJ materials do not emit.
   for (Material& m : scene.materials) m.emission = Color(0.0f);
-  scene.point_lights = std::move(lights);
-  scene.environment = Environment{};
-  scene.environment.constant = ambient;
   scene.name = std::filesystem::path(path).stem().string();
   scene.source = path;
   return scene;

@@ -70,9 +70,9 @@ Scene load_scene(const std::string& spec, const LoadOptions& options) {
   Scene scene;
   if (is_builtin_scene(spec))
     scene = make_builtin_scene(spec);
-  else if (lower_extension(spec) == ".json")
+  else if (const std::string ext = lower_extension(spec); ext == ".json")
     scene = load_json_scene(spec, options);
-  else if (lower_extension(spec) == ".ecs")
+  else if (ext == ".ecs")
     scene = load_ecs_scene(spec);
   else
     scene = load_mesh_file(spec);
